@@ -25,6 +25,12 @@ struct Particles {
     id.push_back(particle_id);
   }
 
+  void pop_back() {
+    for (auto* v : {&x, &y, &z, &qw, &qx, &qy, &qz}) v->pop_back();
+    for (auto* v : {&ix, &iy, &iz, &species}) v->pop_back();
+    id.pop_back();
+  }
+
   Vec3 position(std::size_t i) const { return Vec3(x[i], y[i], z[i]); }
   void set_position(std::size_t i, const Vec3& r) { x[i] = r.x(); y[i] = r.y(); z[i] = r.z(); }
   Int3 image(std::size_t i) const { return Int3(ix[i], iy[i], iz[i]); }

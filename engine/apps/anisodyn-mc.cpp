@@ -1,0 +1,123 @@
+// anisodyn-mc: Metropolis MC preparation runs (compression, NPT, NVT, optional orientational
+// field) from an H5MD state to an H5MD trajectory. Checkpoints to <output>.checkpoint.h5 and
+// resumes from it when run again with the same configuration.
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "anisodyn/core/signals.hpp"
+#include "anisodyn/core/error.hpp"
+#include "anisodyn/io/atomic_file.hpp"
+#include "anisodyn/io/command_line.hpp"
+#include "anisodyn/io/h5md.hpp"
+#include "anisodyn/io/provenance.hpp"
+#include "anisodyn/mc/protocol_config.hpp"
+
+using namespace anisodyn;
+
+namespace {
+
+void write_trajectory(io::H5mdWriter& w, const McRunner& runner) {
+  for (const State& f : runner.frames()) w.append_frame(f);
+  for (const auto& [name, s] : runner.observables()) {
+    for (std::size_t r = 0; r < s.step.size(); ++r) {
+      const auto first = s.value.begin() + static_cast<std::ptrdiff_t>(r * s.width);
+      w.append_observable(name, s.step[r], s.time[r], std::vector<double>(first, first + static_cast<std::ptrdiff_t>(s.width)));
+    }
+    w.set_observable_attribute(name, "definition", s.definition);
+    w.set_observable_attribute(name, "units", name.rfind("box_edges", 0) == 0 ? "length unit of the study" : "1");
+  }
+}
+
+std::map<std::string, Series> read_observables(const io::H5mdReader& r) {
+  std::map<std::string, Series> out;
+  for (const auto& name : r.observable_names()) {
+    const auto s = r.read_observable(name);
+    Series& d = out[name];
+    d.step = s.step;
+    d.time = s.time;
+    d.value = s.value;
+    d.width = s.width;
+    d.definition = r.observable_attribute(name, "definition").value_or("");
+  }
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const io::ToolInfo info{"anisodyn-mc", "Metropolis MC equilibration and compression of hard particles",
+                          "Configuration keys: seed, target_acceptance, tune_every, sample_every, frame_every, field "
+                          "{strength, axis, direction}, phases[] (compress | npt | nvt). See docs/mc.md."};
+  return io::run_tool(argc, argv, info, [&](io::CommonOptions& opt) {
+    if (opt.inputs.size() != 1) throw InputError("command line", "--input", "exactly one input state (H5MD)");
+    if (opt.output.empty()) throw InputError("command line", "--output", "an output file");
+    io::check_output_writable(opt.output);
+    const std::string& input = opt.inputs[0];
+
+    io::ConfigNode cfg(opt.config, opt.config_name());
+    McProtocol protocol = parse_mc_protocol(cfg);
+    if (opt.seed) protocol.seed = *opt.seed;
+    cfg.finish();
+    nlohmann::json parameters = opt.config;
+    parameters["seed"] = protocol.seed;
+
+    State state = io::H5mdReader(input).read_frame(-1);
+    const std::string checkpoint_path = opt.output + ".checkpoint.h5";
+    std::optional<std::pair<State, nlohmann::json>> resume;
+    std::unique_ptr<io::H5mdReader> checkpoint_reader;
+    if (std::filesystem::exists(checkpoint_path)) {
+      checkpoint_reader = std::make_unique<io::H5mdReader>(checkpoint_path);
+      if (checkpoint_reader->parameters() != parameters)
+        throw InputError(checkpoint_path, "/parameters", "a checkpoint of the same configuration; this one was written with "
+                                                         "different parameters: delete it to start afresh");
+    }
+
+    const double reach = largest_pair_cutoff(state.species);
+    if (state.box.shortest_edge() < 2.0 * reach)
+      throw InputError(input, "/particles/all/box", "box edges of at least " + std::to_string(2.0 * reach) +
+                                                        " (twice the largest cut-off) for the minimum image; shortest is " +
+                                                        std::to_string(state.box.shortest_edge()));
+
+    std::unique_ptr<McRunner> runner;
+    try {
+      if (checkpoint_reader) {
+        const auto engine_state = checkpoint_reader->checkpoint();
+        if (!engine_state) throw InputError(checkpoint_path, "/anisodyn/checkpoint", "an engine state");
+        const std::size_t kept = engine_state->at("frames_kept").get<std::size_t>();
+        state = checkpoint_reader->read_frame(static_cast<std::ptrdiff_t>(kept));
+        runner = std::make_unique<McRunner>(state, protocol, opt.quiet);
+        std::vector<State> frames;
+        for (std::size_t f = 0; f < kept; ++f) frames.push_back(checkpoint_reader->read_frame(static_cast<std::ptrdiff_t>(f)));
+        runner->restore(engine_state->at("runner"), read_observables(*checkpoint_reader), std::move(frames));
+        if (!opt.quiet) std::fprintf(stderr, "anisodyn-mc: resuming from %s at cycle %lld\n", checkpoint_path.c_str(),
+                                     static_cast<long long>(state.step));
+      } else {
+        runner = std::make_unique<McRunner>(state, protocol, opt.quiet);
+      }
+    } catch (const InputError& e) {
+      throw InputError(input, "/particles/all", e.what());
+    }
+    const io::H5mdHeader header{"anisodyn", "", "anisodyn user", parameters, io::make_provenance(info.name, opt.argv, opt.inputs), state.species};
+    auto checkpoint = [&] {
+      io::H5mdWriter w(checkpoint_path, header);
+      write_trajectory(w, *runner);
+      w.append_frame(state);
+      nlohmann::json engine_state{{"frames_kept", runner->frames().size()}, {"runner", runner->checkpoint_state()}};
+      w.write_checkpoint(engine_state);
+      w.commit();
+    };
+
+    install_interrupt_handlers();
+    runner->run(opt.checkpoint_every.value_or(0), checkpoint);
+
+    io::H5mdWriter writer(opt.output, header);
+    write_trajectory(writer, *runner);
+    writer.write_checkpoint({{"frames_kept", runner->frames().size()}, {"runner", runner->checkpoint_state()}});
+    writer.commit();
+    std::filesystem::remove(checkpoint_path);
+    std::cout << runner->summary().dump(2) << std::endl;
+  });
+}

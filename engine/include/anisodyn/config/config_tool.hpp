@@ -1,0 +1,17 @@
+#pragma once
+// The anisodyn-config stage: reads its JSON configuration (and optionally an existing state to
+// insert into) and returns the new state. Kept out of main() so tests can call it directly.
+#include <optional>
+#include <string>
+
+#include "anisodyn/io/json_config.hpp"
+#include "anisodyn/system/state.hpp"
+
+namespace anisodyn {
+
+/// Builds the configuration described by `cfg`. With `existing`, the new particles are inserted
+/// randomly into that state (its box and species are kept; new species are appended).
+/// Every problem with the request is reported as an InputError naming the JSON path.
+State build_configuration(io::ConfigNode& cfg, const std::optional<State>& existing, std::uint64_t seed);
+
+}  // namespace anisodyn

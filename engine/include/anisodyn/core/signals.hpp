@@ -1,0 +1,7 @@
+#pragma once
+// SIGINT/SIGTERM set a flag that long runs poll at cycle boundaries: they then write a checkpoint
+// and exit with code 130 instead of dying mid-write.
+namespace anisodyn {
+void install_interrupt_handlers();
+bool interrupt_requested();
+}  // namespace anisodyn

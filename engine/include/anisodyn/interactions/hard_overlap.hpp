@@ -1,0 +1,49 @@
+#pragma once
+// Hard-core exclusion for a whole configuration: the cell list, cached rotation matrices and the
+// per-species-pair cut-offs (sum of circumradii). Contact counts as overlap (spec 10 §1.4).
+#include <cstdint>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "anisodyn/core/types.hpp"
+#include "anisodyn/neighbors/cell_list.hpp"
+#include "anisodyn/system/state.hpp"
+
+namespace anisodyn {
+
+/// Largest centre distance at which any two particles of these species can touch.
+double largest_pair_cutoff(const SpeciesTable& species);
+
+class HardOverlap {
+ public:
+  /// Throws InputError if some species pair has no overlap test.
+  /// expected_counts (per species) sizes the cell grids for particles still to be inserted.
+  explicit HardOverlap(const State& state, const std::vector<std::size_t>& expected_counts = {});
+
+  /// Re-reads every position and orientation (after a box change or a bulk edit).
+  void rebuild(const State& state);
+  /// Registers particle i, just appended to the state (insertion during configuration building).
+  void inserted(std::int32_t i);
+  /// Whether particle i placed at r (wrapped) with rotation matrix rot overlaps any other particle.
+  bool overlaps(std::int32_t i, const Vec3& r, const Mat3& rot) const;
+  /// Records an accepted move of particle i.
+  void moved(std::int32_t i, const Vec3& r, const Mat3& rot);
+  /// First overlapping pair (i < j) of the configuration, if any.
+  std::optional<std::pair<std::int32_t, std::int32_t>> first_overlap() const;
+
+  const Mat3& rotation(std::int32_t i) const { return rot_[static_cast<std::size_t>(i)]; }
+  double cutoff(int a, int b) const { return cutoff_[static_cast<std::size_t>(a * nspecies_ + b)]; }
+  /// Largest pair cut-off: minimum image needs every box edge ≥ twice this.
+  double max_cutoff() const;
+
+ private:
+  const State* state_;
+  int nspecies_ = 0;
+  std::vector<double> cutoff_;
+  std::vector<Mat3> rot_;
+  std::vector<std::size_t> expected_counts_;
+  CellList cells_;
+};
+
+}  // namespace anisodyn

@@ -1,0 +1,82 @@
+#pragma once
+// Metropolis Monte Carlo for hard particles (spec 10 §3): single-particle trial moves — a
+// body-frame translation or a body-frame rotation, chosen at random for anisotropic particles — and,
+// at constant pressure, volume moves in ln V (isotropic or one box axis at a time). Move sizes may
+// be tuned towards a target acceptance; that is for preparation runs only (never in DMC).
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "anisodyn/core/rng.hpp"
+#include "anisodyn/interactions/hard_overlap.hpp"
+#include "anisodyn/interactions/orientational_field.hpp"
+#include "anisodyn/system/state.hpp"
+
+namespace anisodyn {
+
+enum class BoxMoves { Isotropic, PerAxis };
+
+struct MoveSizes {
+  std::vector<double> translate;  // per species: largest body-frame displacement per axis
+  std::vector<double> rotate;     // per species: largest body-frame rotation angle per axis [rad]
+  double log_volume = 0.01;       // largest change of ln V (or ln L_k) per volume move
+};
+
+struct MoveCounters {
+  std::vector<std::int64_t> translate_tried, translate_accepted, rotate_tried, rotate_accepted;
+  std::int64_t volume_tried = 0, volume_accepted = 0;
+
+  void reset(std::size_t nspecies);
+  /// Counts accumulated since `earlier` (a copy taken before).
+  MoveCounters since(const MoveCounters& earlier) const;
+  static double ratio(std::int64_t accepted, std::int64_t tried) {
+    return tried > 0 ? static_cast<double>(accepted) / static_cast<double>(tried) : 0.0;
+  }
+};
+
+class McEngine {
+ public:
+  /// The engine works on `state` in place. Throws InputError if the configuration overlaps.
+  McEngine(State& state, const RngState& rng);
+
+  void set_field(const OrientationalField& field) { field_ = field; }
+  /// Constant-pressure moves with βP (in the study's length unit), or none for NVT.
+  void set_pressure(std::optional<double> beta_pressure, BoxMoves moves = BoxMoves::Isotropic);
+
+  /// One cycle: N particle trial moves, plus on average one volume move under NPT.
+  void cycle();
+  /// Scales every move size by acceptance/target (bounded by a factor 2 either way), using the
+  /// acceptance counted in `window`.
+  void tune(double target_acceptance, const MoveCounters& window);
+
+  /// Affine isotropic rescaling of the box to `volume`, accepted only if it creates no overlap.
+  bool try_rescale(double volume);
+
+  MoveSizes& move_sizes() { return moves_; }
+  const MoveSizes& move_sizes() const { return moves_; }
+  /// Restores what a checkpoint saved, so the run continues bit-for-bit.
+  void restore(const RngState& rng, const MoveCounters& counters, const MoveSizes& moves);
+  /// Cumulative counters since construction.
+  const MoveCounters& counters() const { return counters_; }
+  const RngState& rng_state() const { return rng_.state(); }
+  /// Total field energy βU of the configuration.
+  double field_energy() const;
+  const HardOverlap& overlap() const { return overlap_; }
+
+ private:
+  void particle_move();
+  void volume_move();
+  bool any_overlap_after_rescale(const Vec3& new_edges);
+  void rescale_positions(const Vec3& factor);
+
+  State& state_;
+  Rng rng_;
+  HardOverlap overlap_;
+  OrientationalField field_;
+  std::optional<double> beta_pressure_;
+  BoxMoves box_moves_ = BoxMoves::Isotropic;
+  MoveSizes moves_;
+  MoveCounters counters_;
+};
+
+}  // namespace anisodyn

@@ -1,0 +1,107 @@
+#pragma once
+// An MC preparation run is a list of phases executed in order (spec 10 §3):
+//   compress — NPT with βP raised stepwise until η ≥ target, then affine squeezes (≤ 0.1% in
+//              volume, interleaved with NVT sweeps) to exactly the target packing fraction;
+//   npt      — constant βP, isotropic or per-axis box moves;
+//   nvt      — constant volume.
+// Any phase may tune move sizes towards the target acceptance (preparation only). Observables are
+// sampled every `sample_every` cycles; each phase ends with a summary (means with block-averaged
+// standard errors, the phase label from the Q tensors).
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "anisodyn/interactions/orientational_field.hpp"
+#include "anisodyn/mc/mc_engine.hpp"
+#include "anisodyn/system/state.hpp"
+
+namespace anisodyn {
+
+struct McPhase {
+  enum class Type { Compress, Npt, Nvt };
+  Type type = Type::Nvt;
+  std::string label;
+  std::int64_t cycles = 0;         // npt, nvt
+  bool tune = false;
+  double pressure = 0.0;           // npt: βP
+  BoxMoves box_moves = BoxMoves::Isotropic;
+  // compress
+  double target_packing_fraction = 0.0;
+  std::optional<double> pressure_start;  // default: ideal-gas pressure of the current state
+  double pressure_growth = 1.25;
+  std::int64_t cycles_per_step = 200;
+  std::int64_t max_cycles = 1000000;
+  std::int64_t squeeze_sweeps = 5;
+  double squeeze_window = 0.02;    // the ramp stops once η ≥ target·(1 − window); squeezes do the rest
+  std::string expect_phase;  // "", "isotropic" or "nematic": checked at the end of the phase
+};
+
+struct McProtocol {
+  std::uint64_t seed = 1;
+  double target_acceptance = 0.35;
+  std::int64_t tune_every = 100;
+  std::int64_t sample_every = 10;
+  std::int64_t frame_every = 0;  // 0: final frame only
+  OrientationalField field;
+  std::vector<McPhase> phases;
+};
+
+/// Sampled time series, keyed by observable name; each row has `width` values.
+struct Series {
+  std::vector<std::int64_t> step;
+  std::vector<double> time;
+  std::vector<double> value;
+  std::size_t width = 1;
+  std::string definition;
+};
+
+/// Resumable position within the protocol (stored in checkpoints).
+struct McCursor {
+  std::size_t phase = 0;
+  std::int64_t cycle_in_phase = 0;  // compress: cycles spent so far in the phase
+  std::int64_t total_cycles = 0;
+  double compress_pressure = 0.0;   // current βP of a compress phase (0 = not started)
+  bool squeezing = false;           // compress: pressure ramp done, squeezing to the exact target
+};
+
+class McRunner {
+ public:
+  McRunner(State& state, const McProtocol& protocol, bool quiet);
+
+  /// Runs from the cursor to the end. `checkpoint` is called every `checkpoint_every` cycles
+  /// (0 = never) and when an interrupt was requested (then Interrupted is thrown after it returns).
+  void run(std::int64_t checkpoint_every, const std::function<void()>& checkpoint);
+
+  const std::map<std::string, Series>& observables() const { return observables_; }
+  const std::vector<State>& frames() const { return frames_; }
+  const nlohmann::json& summary() const { return summary_; }
+
+  /// Engine state for checkpoints, and its inverse.
+  nlohmann::json checkpoint_state() const;
+  void restore(const nlohmann::json& engine_state, std::map<std::string, Series> observables, std::vector<State> frames);
+
+ private:
+  void run_fixed_phase(const McPhase& phase, std::int64_t checkpoint_every, const std::function<void()>& checkpoint);
+  void run_compress_phase(const McPhase& phase, std::int64_t checkpoint_every, const std::function<void()>& checkpoint);
+  void one_cycle(const McPhase& phase, std::int64_t checkpoint_every, const std::function<void()>& checkpoint);
+  void sample();
+  void summarise_phase(const McPhase& phase, std::int64_t first_step);
+  void record(const std::string& name, const std::vector<double>& values, const std::string& definition);
+
+  State& state_;
+  McProtocol protocol_;
+  McEngine engine_;
+  bool quiet_;
+  McCursor cursor_;
+  MoveCounters tune_mark_, sample_mark_;
+  std::map<std::string, Series> observables_;
+  std::vector<State> frames_;
+  nlohmann::json summary_ = nlohmann::json::object();
+};
+
+}  // namespace anisodyn

@@ -1,0 +1,139 @@
+#pragma once
+// Cell lists for hard-particle MC, one grid per species.
+//
+// Why one grid per species: in a mixture of very different sizes (spheres of diameter 0.1 among
+// 12×8×1 boards) a single grid sized by the largest cut-off puts thousands of small particles in
+// each cell, and one sized by the smallest makes every large-particle query visit millions of
+// cells. Here species b gets cells no smaller than its own self cut-off (and no more cells than a
+// small multiple of its particle count); a query with any cut-off visits however many cells of
+// that grid it needs. Every box edge may have its own cell count, so elongated boxes are fine.
+//
+// Each cell keeps copies of its particles' positions in fixed-capacity slots, so the candidate
+// loop reads contiguous memory and vectorises. Positions are wrapped into [0, L).
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "anisodyn/core/box.hpp"
+#include "anisodyn/core/types.hpp"
+
+namespace anisodyn {
+
+class SpeciesGrid {
+ public:
+  /// Chooses the grid for `count` particles whose largest mutual cut-off is `self_cutoff`.
+  void configure(const Box& box, double self_cutoff, std::size_t count);
+  void clear();
+  void insert(std::int32_t particle, const Vec3& r);
+  void remove(std::int32_t particle);
+  /// Moves a particle already in the grid (call after an accepted move).
+  void move(std::int32_t particle, const Vec3& r);
+
+  /// Calls f(j, d, r2) for every particle j of this grid with |d|² ≤ rc², where d = r_j − r is the
+  /// minimum-image separation. Stops early and returns true as soon as f returns true.
+  /// r must be wrapped into the box. Not thread-safe (uses a scratch buffer): one grid per thread.
+  template <class F>
+  bool visit(const Box& box, const Vec3& r, double rc, F&& f) const;
+
+  const Int3& cells_per_axis() const { return n_; }
+  std::size_t capacity() const { return capacity_; }
+
+ private:
+  int cell_of(const Vec3& r) const;
+  void grow_capacity();
+  void place(std::int32_t particle, int cell, const Vec3& r);
+
+  Int3 n_ = Int3(1, 1, 1);
+  Vec3 inv_h_ = Vec3::Ones();
+  Vec3 h_ = Vec3::Ones();
+  std::size_t capacity_ = 8;
+  std::vector<std::int32_t> count_;              // particles per cell
+  std::vector<double> sx_, sy_, sz_;             // slot positions, cell-major
+  std::vector<std::int32_t> sid_;                // slot particle index
+  std::vector<std::int32_t> cell_, slot_;        // per particle (indexed by particle index)
+  mutable std::vector<double> r2_scratch_;
+};
+
+/// All species' grids plus the particle → species map.
+class CellList {
+ public:
+  /// self_cutoffs[s] is the largest centre distance at which two particles of species s can
+  /// interact (e.g. twice the circumradius).
+  void build(const Box& box, const std::vector<double>& x, const std::vector<double>& y,
+             const std::vector<double>& z, const std::vector<std::int32_t>& species,
+             const std::vector<double>& self_cutoffs, const std::vector<std::size_t>& expected_counts = {});
+  /// Adds particle `particle` of `species` (its index must be the next unused one).
+  void insert(std::int32_t particle, int species, const Vec3& r);
+  void move(std::int32_t particle, const Vec3& r) { grids_[species_[particle]].move(particle, r); }
+
+  template <class F>
+  bool visit(int species, const Vec3& r, double rc, F&& f) const {
+    return grids_[species].visit(box_, r, rc, std::forward<F>(f));
+  }
+  const SpeciesGrid& grid(int species) const { return grids_[species]; }
+  const Box& box() const { return box_; }
+
+ private:
+  Box box_;
+  std::vector<SpeciesGrid> grids_;
+  std::vector<std::int32_t> species_;
+};
+
+// ---- inline implementation of the hot loop ----------------------------------------------------
+
+template <class F>
+bool SpeciesGrid::visit(const Box& box, const Vec3& r, double rc, F&& f) const {
+  // Per axis, the cells within reach; a reach that wraps the whole axis visits each cell once.
+  int first[3], span[3];
+  for (int k = 0; k < 3; ++k) {
+    const int reach = static_cast<int>(std::ceil(rc * inv_h_[k]));
+    const int c = std::min(static_cast<int>(r[k] * inv_h_[k]), n_[k] - 1);
+    if (2 * reach + 1 >= n_[k]) {
+      first[k] = 0;
+      span[k] = n_[k];
+    } else {
+      first[k] = c - reach + n_[k];  // kept positive for the modulo below
+      span[k] = 2 * reach + 1;
+    }
+  }
+  const double rc2 = rc * rc;
+  const Vec3& L = box.edges();
+  const Vec3& invL = box.inverse_edges();
+  if (r2_scratch_.size() < capacity_) r2_scratch_.resize(capacity_);
+  double* r2 = r2_scratch_.data();
+  for (int a = 0; a < span[0]; ++a) {
+    const int cx = (first[0] + a) % n_[0];
+    for (int b = 0; b < span[1]; ++b) {
+      const int cy = (first[1] + b) % n_[1];
+      for (int c = 0; c < span[2]; ++c) {
+        const int cz = (first[2] + c) % n_[2];
+        const int cell = (cx * n_[1] + cy) * n_[2] + cz;
+        const int m = count_[cell];
+        if (m == 0) continue;
+        const std::size_t base = static_cast<std::size_t>(cell) * capacity_;
+        const double* px = sx_.data() + base;
+        const double* py = sy_.data() + base;
+        const double* pz = sz_.data() + base;
+        // Distance pass without branches so it vectorises; hits are handled afterwards.
+#pragma omp simd
+        for (int s = 0; s < m; ++s) {
+          double dx = px[s] - r.x(), dy = py[s] - r.y(), dz = pz[s] - r.z();
+          dx -= L.x() * std::nearbyint(dx * invL.x());
+          dy -= L.y() * std::nearbyint(dy * invL.y());
+          dz -= L.z() * std::nearbyint(dz * invL.z());
+          r2[s] = dx * dx + dy * dy + dz * dz;
+        }
+        for (int s = 0; s < m; ++s) {
+          if (r2[s] > rc2) continue;
+          Vec3 d(px[s] - r.x(), py[s] - r.y(), pz[s] - r.z());
+          d = box.min_image(d);
+          if (f(sid_[base + s], d, r2[s])) return true;
+        }
+      }
+    }
+  }
+  return false;
+}
+
+}  // namespace anisodyn

@@ -1,0 +1,107 @@
+#include "anisodyn/config/config_tool.hpp"
+
+#include <map>
+
+#include "anisodyn/config/builder.hpp"
+#include "anisodyn/interactions/hard_overlap.hpp"
+#include "anisodyn/system/species_config.hpp"
+
+namespace anisodyn {
+
+namespace {
+
+OrientationRule parse_orientation(std::optional<io::ConfigNode> node, const Shape& shape) {
+  OrientationRule rule;
+  rule.body_axis = default_alignment_axis(shape);
+  if (!node) return rule;
+  rule.mode = node->choice("mode", {"aligned", "random"}, "aligned") == "aligned" ? OrientationRule::Mode::Aligned
+                                                                                   : OrientationRule::Mode::Random;
+  const std::string axis = node->choice("axis", {"auto", "T", "W", "L"}, "auto");
+  if (axis != "auto") rule.body_axis = axis == "T" ? 0 : axis == "W" ? 1 : 2;
+  rule.director = node->vec3("director", Vec3::UnitZ());
+  if (rule.director.norm() == 0.0) node->fail("director", "a non-zero direction");
+  rule.random_azimuth = node->boolean("random_azimuth", false);
+  return rule;
+}
+
+/// Merges the configuration's species into `table`: a name already present must describe the same
+/// species. Returns the index of each configured species in the table.
+std::map<std::string, int> merge_species(SpeciesTable& table, io::ConfigNode& cfg) {
+  std::map<std::string, int> index;
+  for (std::size_t s = 0; s < table.size(); ++s) index[table[s].name] = static_cast<int>(s);
+  if (!cfg.has("species")) return index;
+  auto nodes = cfg.objects("species");
+  for (auto& n : nodes) {
+    Species sp = parse_species(n);
+    auto it = index.find(sp.name);
+    if (it == index.end()) {
+      index[sp.name] = static_cast<int>(table.size());
+      table.push_back(sp);
+    } else if (species_to_json(table[static_cast<std::size_t>(it->second)]) != species_to_json(sp)) {
+      n.fail("name", "a new species name or the same definition as in the input ('" + sp.name + "' differs)");
+    }
+  }
+  return index;
+}
+
+}  // namespace
+
+State build_configuration(io::ConfigNode& cfg, const std::optional<State>& existing, std::uint64_t seed) {
+  State state;
+  if (existing) state = *existing;
+  if (!existing && !cfg.has("species")) cfg.fail("species", "the species table (an array of species)");
+  const auto index = merge_species(state.species, cfg);
+
+  PlacementRequest req;
+  req.counts.assign(state.species.size(), 0);
+  req.rules.resize(state.species.size());
+  auto entries = cfg.objects("composition");
+  if (entries.empty()) cfg.fail("composition", "at least one {\"species\": name, \"count\": n} entry");
+  for (auto& e : entries) {
+    const std::string name = e.string("species");
+    auto it = index.find(name);
+    if (it == index.end()) e.fail("species", "the name of a species in the table");
+    const std::size_t s = static_cast<std::size_t>(it->second);
+    req.counts[s] += static_cast<std::size_t>(e.positive_integer("count"));
+    req.rules[s] = parse_orientation(e.optional_object("orientation"), state.species[s].shape);
+  }
+  req.max_attempts_per_particle = static_cast<std::size_t>(cfg.positive_integer("max_attempts_per_particle", 10000));
+
+  const std::string placement = cfg.choice("placement", {"lattice", "random"}, existing ? "random" : "lattice");
+  if (existing) {
+    if (placement != "random") cfg.fail("placement", "\"random\" when inserting into an existing configuration");
+    if (cfg.has("box")) cfg.fail("box", "no box when inserting into an existing configuration (its box is kept)");
+  } else {
+    auto box = cfg.object("box");
+    if (box.has("edges") == box.has("packing_fraction")) box.fail("", "either \"edges\" or \"packing_fraction\" (with optional \"aspect\")");
+    if (box.has("edges")) {
+      state.box = Box(box.positive_vec3("edges"));
+    } else {
+      const double eta = box.positive("packing_fraction");
+      if (eta >= 1.0) box.fail("packing_fraction", "a packing fraction below 1");
+      state.box = Box(box_edges_for_packing_fraction(state.species, req.counts, eta, box.positive_vec3("aspect", Vec3::Ones())));
+    }
+  }
+  cfg.finish();
+
+  // Minimum image needs every edge to be at least twice the largest interaction range.
+  const double largest = largest_pair_cutoff(state.species);
+  if (state.box.shortest_edge() < 2.0 * largest)
+    cfg.fail(existing ? "" : "box", "box edges of at least " + std::to_string(2.0 * largest) +
+                                        " (twice the largest cut-off, for the minimum image); the box is " +
+                                        std::to_string(state.box.shortest_edge()) + " across");
+
+  Rng rng(seed, 0x00C0F16ULL);
+  try {
+    if (placement == "lattice") place_on_lattice(state, req, rng);
+    else insert_randomly(state, req, rng);
+  } catch (const PlacementFailure& e) {
+    cfg.fail(existing ? "composition" : "box.packing_fraction", std::string("a reachable configuration: ") + e.what());
+  }
+  if (placement == "lattice") {  // defensive: the lattice spacing rules out overlaps by construction
+    if (HardOverlap(state).first_overlap()) throw RuntimeFailure("internal error: the lattice placement overlaps");
+  }
+  return state;
+}
+
+}  // namespace anisodyn

@@ -1,0 +1,94 @@
+#include "anisodyn/interactions/hard_overlap.hpp"
+
+#include <algorithm>
+#include <string>
+
+#include "anisodyn/core/error.hpp"
+#include "anisodyn/geometry/overlap.hpp"
+
+namespace anisodyn {
+
+double largest_pair_cutoff(const SpeciesTable& species) {
+  double r = 0.0;
+  for (const auto& s : species) r = std::max(r, s.shape.circumradius());
+  return 2.0 * r;
+}
+
+HardOverlap::HardOverlap(const State& state, const std::vector<std::size_t>& expected_counts)
+    : state_(&state), expected_counts_(expected_counts) {
+  const auto& species = state.species;
+  nspecies_ = static_cast<int>(species.size());
+  cutoff_.assign(species.size() * species.size(), 0.0);
+  for (int a = 0; a < nspecies_; ++a)
+    for (int b = 0; b < nspecies_; ++b) {
+      const Shape& sa = species[static_cast<std::size_t>(a)].shape;
+      const Shape& sb = species[static_cast<std::size_t>(b)].shape;
+      if (!overlap_supported(sa.kind, sb.kind))
+        throw InputError("", "species", std::string("no overlap test for the pair ") + shape_kind_name(sa.kind) +
+                                            "–" + shape_kind_name(sb.kind));
+      cutoff_[static_cast<std::size_t>(a * nspecies_ + b)] = sa.circumradius() + sb.circumradius();
+    }
+  rebuild(state);
+}
+
+double HardOverlap::max_cutoff() const { return cutoff_.empty() ? 0.0 : *std::max_element(cutoff_.begin(), cutoff_.end()); }
+
+void HardOverlap::rebuild(const State& state) {
+  state_ = &state;
+  const Particles& p = state.particles;
+  rot_.resize(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) rot_[i] = p.orientation(i).toRotationMatrix();
+  std::vector<double> self(static_cast<std::size_t>(nspecies_));
+  for (int s = 0; s < nspecies_; ++s) self[static_cast<std::size_t>(s)] = cutoff(s, s);
+  cells_.build(state.box, p.x, p.y, p.z, p.species, self, expected_counts_);
+}
+
+void HardOverlap::inserted(std::int32_t i) {
+  const Particles& p = state_->particles;
+  const std::size_t ui = static_cast<std::size_t>(i);
+  rot_.resize(p.size());
+  rot_[ui] = p.orientation(ui).toRotationMatrix();
+  cells_.insert(i, p.species[ui], p.position(ui));
+}
+
+bool HardOverlap::overlaps(std::int32_t i, const Vec3& r, const Mat3& rot) const {
+  const auto& species = state_->species;
+  const auto& spec = state_->particles.species;
+  const int a = spec[static_cast<std::size_t>(i)];
+  const Shape& sa = species[static_cast<std::size_t>(a)].shape;
+  for (int b = 0; b < nspecies_; ++b) {
+    const Shape& sb = species[static_cast<std::size_t>(b)].shape;
+    const bool hit = cells_.visit(b, r, cutoff(a, b), [&](std::int32_t j, const Vec3& d, double) {
+      return j != i && overlap(sa, rot, sb, rot_[static_cast<std::size_t>(j)], d);
+    });
+    if (hit) return true;
+  }
+  return false;
+}
+
+void HardOverlap::moved(std::int32_t i, const Vec3& r, const Mat3& rot) {
+  rot_[static_cast<std::size_t>(i)] = rot;
+  cells_.move(i, r);
+}
+
+std::optional<std::pair<std::int32_t, std::int32_t>> HardOverlap::first_overlap() const {
+  const Particles& p = state_->particles;
+  const auto& species = state_->species;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const int a = p.species[i];
+    const Shape& sa = species[static_cast<std::size_t>(a)].shape;
+    std::int32_t partner = -1;
+    for (int b = 0; b < nspecies_ && partner < 0; ++b) {
+      const Shape& sb = species[static_cast<std::size_t>(b)].shape;
+      cells_.visit(b, p.position(i), cutoff(a, b), [&](std::int32_t j, const Vec3& d, double) {
+        if (j <= static_cast<std::int32_t>(i) || !overlap(sa, rot_[i], sb, rot_[static_cast<std::size_t>(j)], d)) return false;
+        partner = j;
+        return true;
+      });
+    }
+    if (partner >= 0) return std::make_pair(static_cast<std::int32_t>(i), partner);
+  }
+  return std::nullopt;
+}
+
+}  // namespace anisodyn

@@ -1,0 +1,82 @@
+#include "anisodyn/io/command_line.hpp"
+
+#include <omp.h>
+
+#include <boost/program_options.hpp>
+#include <cstdio>
+#include <iostream>
+
+#include "anisodyn/core/error.hpp"
+#include "anisodyn/io/json_config.hpp"
+#include "anisodyn/version.hpp"
+
+namespace anisodyn::io {
+
+namespace po = boost::program_options;
+
+std::optional<CommonOptions> parse_command_line(int argc, char** argv, const ToolInfo& info) {
+  CommonOptions opt;
+  opt.tool = info.name;
+  for (int i = 0; i < argc; ++i) opt.argv.emplace_back(argv[i]);
+
+  po::options_description desc("Options");
+  std::uint64_t seed = 0;
+  std::int64_t checkpoint_every = 0;
+  desc.add_options()
+      ("help,h", "show this help and exit")
+      ("version", "show the version and exit")
+      ("config,c", po::value<std::string>(&opt.config_path), "JSON configuration file")
+      ("set", po::value<std::vector<std::string>>(&opt.overrides)->composing(), "override a configuration value: key.path=value (repeatable)")
+      ("input,i", po::value<std::vector<std::string>>(&opt.inputs)->composing(), "input file (repeatable)")
+      ("output,o", po::value<std::string>(&opt.output), "output file")
+      ("seed", po::value<std::uint64_t>(&seed), "random seed (overrides the configuration's seed)")
+      ("threads", po::value<int>(&opt.threads)->default_value(1), "OpenMP threads")
+      ("checkpoint-every", po::value<std::int64_t>(&checkpoint_every), "cycles between checkpoints")
+      ("quiet,q", po::bool_switch(&opt.quiet), "no progress output");
+  po::variables_map vm;
+  try {
+    po::store(po::command_line_parser(argc, argv).options(desc).run(), vm);
+    po::notify(vm);
+  } catch (const po::error& e) {
+    throw InputError("command line", "", std::string(e.what()) + " (see --help)");
+  }
+  if (vm.count("help")) {
+    std::cout << info.name << " — " << info.summary << "\n\nUsage: " << info.name << " [options]\n\n" << desc;
+    if (!info.usage_notes.empty()) std::cout << "\n" << info.usage_notes << "\n";
+    return std::nullopt;
+  }
+  if (vm.count("version")) {
+    std::cout << info.name << " " << kVersion << " (" << kGitRevision << ")\n";
+    return std::nullopt;
+  }
+  if (vm.count("seed")) opt.seed = seed;
+  if (vm.count("checkpoint-every")) {
+    if (checkpoint_every <= 0) throw InputError("command line", "--checkpoint-every", "expected a positive number of cycles");
+    opt.checkpoint_every = checkpoint_every;
+  }
+  if (opt.threads < 1) throw InputError("command line", "--threads", "expected at least 1 thread");
+  omp_set_num_threads(opt.threads);
+  if (!opt.config_path.empty()) opt.config = load_json_file(opt.config_path);
+  for (const auto& assignment : opt.overrides) apply_override(opt.config, assignment);
+  return opt;
+}
+
+int run_tool(int argc, char** argv, const ToolInfo& info, const std::function<void(CommonOptions&)>& body) {
+  try {
+    auto opt = parse_command_line(argc, argv, info);
+    if (!opt) return kExitOk;
+    body(*opt);
+    return kExitOk;
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "%s: error: %s\n", info.name.c_str(), e.what());
+    return kExitBadInput;
+  } catch (const Interrupted& e) {
+    std::fprintf(stderr, "%s: interrupted: %s\n", info.name.c_str(), e.what());
+    return kExitInterrupted;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: runtime failure: %s\n", info.name.c_str(), e.what());
+    return kExitRuntime;
+  }
+}
+
+}  // namespace anisodyn::io

@@ -1,0 +1,209 @@
+#include "anisodyn/mc/mc_engine.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "anisodyn/core/error.hpp"
+#include "anisodyn/core/quaternion.hpp"
+
+namespace anisodyn {
+
+void MoveCounters::reset(std::size_t nspecies) {
+  translate_tried.assign(nspecies, 0);
+  translate_accepted.assign(nspecies, 0);
+  rotate_tried.assign(nspecies, 0);
+  rotate_accepted.assign(nspecies, 0);
+  volume_tried = volume_accepted = 0;
+}
+
+MoveCounters MoveCounters::since(const MoveCounters& earlier) const {
+  MoveCounters d = *this;
+  for (std::size_t s = 0; s < d.translate_tried.size(); ++s) {
+    d.translate_tried[s] -= earlier.translate_tried[s];
+    d.translate_accepted[s] -= earlier.translate_accepted[s];
+    d.rotate_tried[s] -= earlier.rotate_tried[s];
+    d.rotate_accepted[s] -= earlier.rotate_accepted[s];
+  }
+  d.volume_tried -= earlier.volume_tried;
+  d.volume_accepted -= earlier.volume_accepted;
+  return d;
+}
+
+namespace {
+std::string describe_pair(const State& s, std::int32_t i, std::int32_t j) {
+  return "particles " + std::to_string(s.particles.id[static_cast<std::size_t>(i)]) + " and " +
+         std::to_string(s.particles.id[static_cast<std::size_t>(j)]) + " overlap";
+}
+}  // namespace
+
+McEngine::McEngine(State& state, const RngState& rng) : state_(state), rng_(rng), overlap_(state) {
+  if (auto pair = overlap_.first_overlap())
+    throw InputError("", "", "overlapping configuration: " + describe_pair(state, pair->first, pair->second));
+  const std::size_t ns = state.species.size();
+  moves_.translate.resize(ns);
+  moves_.rotate.resize(ns);
+  for (std::size_t s = 0; s < ns; ++s) {
+    // Start at a tenth of the smallest body dimension; tuning takes it from there.
+    moves_.translate[s] = 0.1 * 2.0 * state.species[s].shape.inscribed_radius();
+    moves_.rotate[s] = 0.1;
+  }
+  counters_.reset(ns);
+}
+
+void McEngine::restore(const RngState& rng, const MoveCounters& counters, const MoveSizes& moves) {
+  rng_ = Rng(rng);
+  counters_ = counters;
+  moves_ = moves;
+}
+
+void McEngine::set_pressure(std::optional<double> beta_pressure, BoxMoves moves) {
+  beta_pressure_ = beta_pressure;
+  box_moves_ = moves;
+}
+
+void McEngine::cycle() {
+  const std::size_t n = state_.particles.size();
+  if (!beta_pressure_) {
+    for (std::size_t t = 0; t < n; ++t) particle_move();
+    return;
+  }
+  // N + 1 moves, each a volume move with probability 1/(N + 1): one volume move per cycle on average.
+  for (std::size_t t = 0; t <= n; ++t) {
+    if (rng_.index(n + 1) == 0) volume_move();
+    else particle_move();
+  }
+}
+
+void McEngine::particle_move() {
+  Particles& p = state_.particles;
+  const std::int32_t i = static_cast<std::int32_t>(rng_.index(p.size()));
+  const std::size_t ui = static_cast<std::size_t>(i);
+  const int s = p.species[ui];
+  const Shape& shape = state_.species[static_cast<std::size_t>(s)].shape;
+  const Mat3& rot = overlap_.rotation(i);
+  const bool rotate = shape.is_anisotropic() && rng_.uniform() < 0.5;
+
+  if (!rotate) {
+    const double d = moves_.translate[static_cast<std::size_t>(s)];
+    const Vec3 body(rng_.uniform(-d, d), rng_.uniform(-d, d), rng_.uniform(-d, d));
+    Vec3 r = p.position(ui) + rot * body;
+    Int3 image = p.image(ui);
+    state_.box.wrap(r, image);
+    counters_.translate_tried[static_cast<std::size_t>(s)]++;
+    if (overlap_.overlaps(i, r, rot)) return;
+    p.set_position(ui, r);
+    p.set_image(ui, image);
+    overlap_.moved(i, r, rot);
+    counters_.translate_accepted[static_cast<std::size_t>(s)]++;
+    return;
+  }
+
+  const double a = moves_.rotate[static_cast<std::size_t>(s)];
+  const Vec3 theta(rng_.uniform(-a, a), rng_.uniform(-a, a), rng_.uniform(-a, a));
+  const Quat q = rotate_in_body_frame(p.orientation(ui), theta);
+  const Mat3 new_rot = q.toRotationMatrix();
+  counters_.rotate_tried[static_cast<std::size_t>(s)]++;
+  if (field_.active()) {
+    // Metropolis on the field energy first: it is cheap and rejects before the overlap search.
+    const double dU = field_.energy(new_rot) - field_.energy(rot);
+    if (dU > 0.0 && rng_.uniform() >= std::exp(-dU)) return;
+  }
+  const Vec3 r = p.position(ui);
+  if (overlap_.overlaps(i, r, new_rot)) return;
+  p.set_orientation(ui, q);
+  overlap_.moved(i, r, new_rot);
+  counters_.rotate_accepted[static_cast<std::size_t>(s)]++;
+}
+
+void McEngine::rescale_positions(const Vec3& factor) {
+  Particles& p = state_.particles;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    p.x[i] *= factor.x();
+    p.y[i] *= factor.y();
+    p.z[i] *= factor.z();
+  }
+}
+
+bool McEngine::any_overlap_after_rescale(const Vec3& new_edges) {
+  const Vec3 old_edges = state_.box.edges();
+  const Vec3 factor = new_edges.cwiseQuotient(old_edges);
+  rescale_positions(factor);
+  state_.box.set_edges(new_edges);
+  overlap_.rebuild(state_);
+  const bool bad = overlap_.first_overlap().has_value();
+  if (bad) {
+    rescale_positions(old_edges.cwiseQuotient(new_edges));
+    state_.box.set_edges(old_edges);
+    overlap_.rebuild(state_);
+  }
+  return bad;
+}
+
+void McEngine::volume_move() {
+  counters_.volume_tried++;
+  const Vec3 old_edges = state_.box.edges();
+  const double old_volume = state_.box.volume();
+  const double dlnv = rng_.uniform(-moves_.log_volume, moves_.log_volume);
+  Vec3 new_edges = old_edges;
+  bool radial = true;  // isotropic scaling: expansion cannot create overlaps of centrosymmetric convex bodies
+  if (box_moves_ == BoxMoves::Isotropic) {
+    new_edges *= std::exp(dlnv / 3.0);
+  } else {
+    new_edges[static_cast<int>(rng_.index(3))] *= std::exp(dlnv);
+    radial = false;
+  }
+  const double new_volume = new_edges.prod();
+  // Minimum image needs every edge ≥ 2 × the largest cut-off.
+  if (new_edges.minCoeff() < 2.0 * overlap_.max_cutoff()) return;
+  const double n = static_cast<double>(state_.particles.size());
+  const double log_acc = -*beta_pressure_ * (new_volume - old_volume) + (n + 1.0) * std::log(new_volume / old_volume);
+  if (log_acc < 0.0 && rng_.uniform() >= std::exp(log_acc)) return;
+  if (radial && new_volume >= old_volume) {
+    rescale_positions(new_edges.cwiseQuotient(old_edges));
+    state_.box.set_edges(new_edges);
+    overlap_.rebuild(state_);
+  } else if (any_overlap_after_rescale(new_edges)) {
+    return;
+  }
+  counters_.volume_accepted++;
+}
+
+bool McEngine::try_rescale(double volume) {
+  const Vec3 old_edges = state_.box.edges();
+  const Vec3 new_edges = old_edges * std::cbrt(volume / state_.box.volume());
+  if (new_edges.minCoeff() < 2.0 * overlap_.max_cutoff()) return false;
+  if (volume >= state_.box.volume()) {
+    rescale_positions(new_edges.cwiseQuotient(old_edges));
+    state_.box.set_edges(new_edges);
+    overlap_.rebuild(state_);
+    return true;
+  }
+  return !any_overlap_after_rescale(new_edges);
+}
+
+void McEngine::tune(double target, const MoveCounters& w) {
+  auto scale = [target](double acceptance) { return std::clamp(acceptance / target, 0.5, 1.5); };
+  const double max_translate = 0.25 * state_.box.shortest_edge();
+  for (std::size_t s = 0; s < state_.species.size(); ++s) {
+    if (w.translate_tried[s] > 0)
+      moves_.translate[s] = std::min(max_translate,
+                                     moves_.translate[s] * scale(MoveCounters::ratio(w.translate_accepted[s], w.translate_tried[s])));
+    if (w.rotate_tried[s] > 0)
+      moves_.rotate[s] = std::min(M_PI, moves_.rotate[s] * scale(MoveCounters::ratio(w.rotate_accepted[s], w.rotate_tried[s])));
+  }
+  if (w.volume_tried > 0)
+    moves_.log_volume = std::min(0.5, moves_.log_volume * scale(MoveCounters::ratio(w.volume_accepted, w.volume_tried)));
+}
+
+double McEngine::field_energy() const {
+  if (!field_.active()) return 0.0;
+  double u = 0.0;
+  for (std::size_t i = 0; i < state_.particles.size(); ++i) {
+    if (state_.species[static_cast<std::size_t>(state_.particles.species[i])].shape.is_anisotropic())
+      u += field_.energy(overlap_.rotation(static_cast<std::int32_t>(i)));
+  }
+  return u;
+}
+
+}  // namespace anisodyn

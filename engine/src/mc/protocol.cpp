@@ -1,0 +1,277 @@
+#include "anisodyn/mc/protocol.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "anisodyn/core/error.hpp"
+#include "anisodyn/core/progress.hpp"
+#include "anisodyn/core/signals.hpp"
+#include "anisodyn/core/statistics.hpp"
+#include "anisodyn/system/order.hpp"
+
+namespace anisodyn {
+
+namespace {
+const char* type_name(McPhase::Type t) {
+  switch (t) {
+    case McPhase::Type::Compress: return "compress";
+    case McPhase::Type::Npt: return "npt";
+    case McPhase::Type::Nvt: return "nvt";
+  }
+  return "?";
+}
+
+const char* kAxisNames[3] = {"T", "W", "L"};
+
+std::string phase_detail(const State& s, const McEngine& e) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "eta=%.4f dlnV=%.3g", s.packing_fraction(), e.move_sizes().log_volume);
+  return buf;
+}
+}  // namespace
+
+McRunner::McRunner(State& state, const McProtocol& protocol, bool quiet)
+    : state_(state), protocol_(protocol), engine_(state, RngState{protocol.seed, 0, 0, 4}), quiet_(quiet) {
+  engine_.set_field(protocol.field);
+  tune_mark_ = sample_mark_ = engine_.counters();
+  summary_["phases"] = nlohmann::json::array();
+}
+
+void McRunner::record(const std::string& name, const std::vector<double>& values, const std::string& definition) {
+  Series& s = observables_[name];
+  s.width = values.size();
+  s.definition = definition;
+  s.step.push_back(cursor_.total_cycles);
+  s.time.push_back(static_cast<double>(cursor_.total_cycles));
+  s.value.insert(s.value.end(), values.begin(), values.end());
+}
+
+void McRunner::sample() {
+  const MoveCounters w = engine_.counters().since(sample_mark_);
+  sample_mark_ = engine_.counters();
+  const Vec3& L = state_.box.edges();
+  record("packing_fraction", {state_.packing_fraction()}, "packing fraction: total particle volume / box volume");
+  record("box_edges", {L.x(), L.y(), L.z()}, "box edge lengths Lx, Ly, Lz");
+  const McPhase& phase = protocol_.phases[cursor_.phase];
+  const bool npt = phase.type == McPhase::Type::Npt || (phase.type == McPhase::Type::Compress && !cursor_.squeezing);
+  const double pressure = phase.type == McPhase::Type::Npt ? phase.pressure : cursor_.compress_pressure;
+  record("pressure", {npt ? pressure : std::numeric_limits<double>::quiet_NaN()}, "imposed reduced pressure βP (NaN at constant volume)");
+  if (w.volume_tried > 0)
+    record("acceptance_volume", {MoveCounters::ratio(w.volume_accepted, w.volume_tried)}, "acceptance of volume moves since the previous sample");
+  for (std::size_t s = 0; s < state_.species.size(); ++s) {
+    const auto& sp = state_.species[s];
+    record("acceptance/" + sp.name,
+           {MoveCounters::ratio(w.translate_accepted[s], w.translate_tried[s]), MoveCounters::ratio(w.rotate_accepted[s], w.rotate_tried[s])},
+           "acceptance of translation and rotation trials since the previous sample");
+    if (!sp.shape.is_anisotropic()) continue;
+    const auto order = body_axis_order(state_, static_cast<int>(s));
+    record("order/" + sp.name, {order[0].order, order[1].order, order[2].order},
+           "uniaxial order parameters U_T, U_W, U_L: largest eigenvalue of the Q tensor of each body axis");
+  }
+  if (protocol_.field.active())
+    record("field_energy", {engine_.field_energy() / static_cast<double>(state_.particles.size())}, "field energy per particle βU/N");
+}
+
+void McRunner::one_cycle(const McPhase& phase, std::int64_t checkpoint_every, const std::function<void()>& checkpoint) {
+  engine_.cycle();
+  ++cursor_.total_cycles;
+  ++cursor_.cycle_in_phase;
+  state_.step = cursor_.total_cycles;
+  state_.time = static_cast<double>(cursor_.total_cycles);
+  if (phase.tune && cursor_.cycle_in_phase % protocol_.tune_every == 0) {
+    engine_.tune(protocol_.target_acceptance, engine_.counters().since(tune_mark_));
+    tune_mark_ = engine_.counters();
+  }
+  if (cursor_.total_cycles % protocol_.sample_every == 0) sample();
+  if (protocol_.frame_every > 0 && cursor_.total_cycles % protocol_.frame_every == 0) frames_.push_back(state_);
+  if (interrupt_requested()) {
+    checkpoint();
+    throw Interrupted("checkpoint written at cycle " + std::to_string(cursor_.total_cycles) + "; run again to resume");
+  }
+  if (checkpoint_every > 0 && cursor_.total_cycles % checkpoint_every == 0) checkpoint();
+}
+
+void McRunner::run_fixed_phase(const McPhase& phase, std::int64_t checkpoint_every, const std::function<void()>& checkpoint) {
+  if (phase.type == McPhase::Type::Npt) engine_.set_pressure(phase.pressure, phase.box_moves);
+  else engine_.set_pressure(std::nullopt);
+  Progress progress(std::string("mc ") + type_name(phase.type) + " " + phase.label, phase.cycles, quiet_);
+  while (cursor_.cycle_in_phase < phase.cycles) {
+    one_cycle(phase, checkpoint_every, checkpoint);
+    progress.update(cursor_.cycle_in_phase, phase_detail(state_, engine_));
+  }
+  progress.finish(phase_detail(state_, engine_));
+}
+
+void McRunner::run_compress_phase(const McPhase& phase, std::int64_t checkpoint_every, const std::function<void()>& checkpoint) {
+  const double target = phase.target_packing_fraction;
+  const double target_volume = state_.packing_fraction() * state_.box.volume() / target;
+  Progress progress("mc compress to eta=" + std::to_string(target), phase.max_cycles, quiet_);
+  auto check_budget = [&] {
+    if (cursor_.cycle_in_phase >= phase.max_cycles)
+      throw RuntimeFailure("compression did not reach packing fraction " + std::to_string(target) + " within " +
+                           std::to_string(phase.max_cycles) + " cycles (reached " + std::to_string(state_.packing_fraction()) +
+                           " at betaP=" + std::to_string(cursor_.compress_pressure) + "); raise max_cycles or lower the target");
+  };
+  if (!cursor_.squeezing) {
+    if (cursor_.compress_pressure <= 0.0)
+      cursor_.compress_pressure = phase.pressure_start.value_or(static_cast<double>(state_.particles.size()) / state_.box.volume());
+    while (state_.packing_fraction() < target * (1.0 - phase.squeeze_window)) {
+      engine_.set_pressure(cursor_.compress_pressure, phase.box_moves);
+      const std::int64_t step_end = (cursor_.cycle_in_phase / phase.cycles_per_step + 1) * phase.cycles_per_step;
+      while (cursor_.cycle_in_phase < step_end) {
+        one_cycle(phase, checkpoint_every, checkpoint);
+        progress.update(cursor_.cycle_in_phase, phase_detail(state_, engine_) + " betaP=" + std::to_string(cursor_.compress_pressure));
+      }
+      check_budget();
+      if (state_.packing_fraction() < target * (1.0 - phase.squeeze_window)) cursor_.compress_pressure *= phase.pressure_growth;
+    }
+    cursor_.squeezing = true;
+  }
+  engine_.set_pressure(std::nullopt);
+  // Squeeze: affine steps of at most 0.1% in volume; when a step would overlap, relax with sweeps.
+  while (std::abs(state_.box.volume() - target_volume) > 1e-12 * target_volume) {
+    const double v = state_.box.volume();
+    const double next = v < target_volume ? target_volume : std::max(target_volume, v * (1.0 - 1e-3));
+    if (!engine_.try_rescale(next)) {
+      for (std::int64_t k = 0; k < phase.squeeze_sweeps; ++k) one_cycle(phase, checkpoint_every, checkpoint);
+      check_budget();
+      progress.update(cursor_.cycle_in_phase, phase_detail(state_, engine_) + " squeezing");
+    }
+  }
+  progress.finish(phase_detail(state_, engine_));
+}
+
+void McRunner::summarise_phase(const McPhase& phase, std::int64_t first_step) {
+  nlohmann::json js;
+  js["type"] = type_name(phase.type);
+  js["label"] = phase.label;
+  js["first_cycle"] = first_step;
+  js["last_cycle"] = cursor_.total_cycles;
+  js["final_packing_fraction"] = state_.packing_fraction();
+  js["final_box_edges"] = {state_.box.edges().x(), state_.box.edges().y(), state_.box.edges().z()};
+  if (phase.type == McPhase::Type::Npt) js["pressure"] = phase.pressure;
+  if (phase.type == McPhase::Type::Compress) js["final_ramp_pressure"] = cursor_.compress_pressure;
+
+  // Column k of an observable over the samples taken in this phase.
+  auto column = [&](const std::string& name, std::size_t k) {
+    std::vector<double> out;
+    auto it = observables_.find(name);
+    if (it == observables_.end()) return out;
+    const Series& s = it->second;
+    for (std::size_t r = 0; r < s.step.size(); ++r)
+      if (s.step[r] > first_step && s.step[r] <= cursor_.total_cycles) out.push_back(s.value[r * s.width + k]);
+    return out;
+  };
+  auto stats = [](const std::vector<double>& x) {
+    const MeanError m = block_average(x);
+    // Drift: compare the halves; a difference beyond 3 combined errors means not yet stationary.
+    const std::vector<double> a(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(x.size() / 2));
+    const std::vector<double> b(x.begin() + static_cast<std::ptrdiff_t>(x.size() / 2), x.end());
+    const MeanError ma = block_average(a), mb = block_average(b);
+    const bool drift = x.size() >= 64 && std::abs(ma.mean - mb.mean) > 3.0 * std::hypot(ma.error, mb.error);
+    return nlohmann::json{{"mean", m.mean}, {"error", m.error}, {"samples", m.samples}, {"blocks", m.blocks}, {"drifting", drift}};
+  };
+  js["packing_fraction"] = stats(column("packing_fraction", 0));
+  bool nematic = false;
+  for (const auto& sp : state_.species) {
+    js["acceptance"][sp.name] = {{"translate", stats(column("acceptance/" + sp.name, 0))["mean"]}};
+    if (!sp.shape.is_anisotropic()) continue;
+    js["acceptance"][sp.name]["rotate"] = stats(column("acceptance/" + sp.name, 1))["mean"];
+    for (std::size_t k = 0; k < 3; ++k) {
+      auto st = stats(column("order/" + sp.name, k));
+      nematic = nematic || st["mean"].get<double>() > kNematicThreshold;
+      js["order"][sp.name][kAxisNames[k]] = st;
+    }
+    std::size_t n = 0;
+    for (auto s : state_.particles.species) n += (state_.species[static_cast<std::size_t>(s)].name == sp.name);
+    js["order"][sp.name]["isotropic_baseline"] = isotropic_order_baseline(n, 50);
+  }
+  if (js.contains("order")) {
+    js["phase"] = nematic ? "nematic" : "isotropic";
+    if (!phase.expect_phase.empty() && phase.expect_phase != js["phase"]) {
+      js["phase_mismatch"] = true;
+      std::fprintf(stderr, "anisodyn-mc: WARNING: phase '%s' expected after %s phase '%s', but the order parameters say '%s'\n",
+                   phase.expect_phase.c_str(), type_name(phase.type), phase.label.c_str(), js["phase"].get<std::string>().c_str());
+    }
+  }
+  const MoveSizes& m = engine_.move_sizes();
+  js["move_sizes"] = {{"translate", m.translate}, {"rotate", m.rotate}, {"log_volume", m.log_volume}};
+  summary_["phases"].push_back(js);
+}
+
+void McRunner::run(std::int64_t checkpoint_every, const std::function<void()>& checkpoint) {
+  for (; cursor_.phase < protocol_.phases.size(); ++cursor_.phase) {
+    const McPhase& phase = protocol_.phases[cursor_.phase];
+    const std::int64_t first_step = cursor_.total_cycles - cursor_.cycle_in_phase;
+    if (cursor_.cycle_in_phase == 0) tune_mark_ = engine_.counters();
+    if (phase.type == McPhase::Type::Compress) run_compress_phase(phase, checkpoint_every, checkpoint);
+    else run_fixed_phase(phase, checkpoint_every, checkpoint);
+    summarise_phase(phase, first_step);
+    cursor_.cycle_in_phase = 0;
+    cursor_.compress_pressure = 0.0;
+    cursor_.squeezing = false;
+  }
+  if (frames_.empty() || frames_.back().step != state_.step) frames_.push_back(state_);
+  summary_["total_cycles"] = cursor_.total_cycles;
+  summary_["final_packing_fraction"] = state_.packing_fraction();
+}
+
+}  // namespace anisodyn
+
+namespace anisodyn {
+
+namespace {
+nlohmann::json counters_to_json(const MoveCounters& c) {
+  return {{"translate_tried", c.translate_tried}, {"translate_accepted", c.translate_accepted},
+          {"rotate_tried", c.rotate_tried},       {"rotate_accepted", c.rotate_accepted},
+          {"volume_tried", c.volume_tried},       {"volume_accepted", c.volume_accepted}};
+}
+MoveCounters counters_from_json(const nlohmann::json& j) {
+  MoveCounters c;
+  j.at("translate_tried").get_to(c.translate_tried);
+  j.at("translate_accepted").get_to(c.translate_accepted);
+  j.at("rotate_tried").get_to(c.rotate_tried);
+  j.at("rotate_accepted").get_to(c.rotate_accepted);
+  j.at("volume_tried").get_to(c.volume_tried);
+  j.at("volume_accepted").get_to(c.volume_accepted);
+  return c;
+}
+}  // namespace
+
+nlohmann::json McRunner::checkpoint_state() const {
+  const RngState& r = engine_.rng_state();
+  const MoveSizes& m = engine_.move_sizes();
+  return {{"cursor", {{"phase", cursor_.phase}, {"cycle_in_phase", cursor_.cycle_in_phase}, {"total_cycles", cursor_.total_cycles},
+                      {"compress_pressure", cursor_.compress_pressure}, {"squeezing", cursor_.squeezing}}},
+          {"rng", {{"seed", r.seed}, {"stream", r.stream}, {"counter", r.counter}, {"used", r.used}}},
+          {"counters", counters_to_json(engine_.counters())},
+          {"tune_mark", counters_to_json(tune_mark_)},
+          {"sample_mark", counters_to_json(sample_mark_)},
+          {"move_sizes", {{"translate", m.translate}, {"rotate", m.rotate}, {"log_volume", m.log_volume}}},
+          {"summary", summary_}};
+}
+
+void McRunner::restore(const nlohmann::json& js, std::map<std::string, Series> observables, std::vector<State> frames) {
+  const auto& c = js.at("cursor");
+  cursor_.phase = c.at("phase").get<std::size_t>();
+  cursor_.cycle_in_phase = c.at("cycle_in_phase").get<std::int64_t>();
+  cursor_.total_cycles = c.at("total_cycles").get<std::int64_t>();
+  cursor_.compress_pressure = c.at("compress_pressure").get<double>();
+  cursor_.squeezing = c.at("squeezing").get<bool>();
+  const auto& r = js.at("rng");
+  RngState rng{r.at("seed").get<std::uint64_t>(), r.at("stream").get<std::uint64_t>(), r.at("counter").get<std::uint64_t>(),
+               r.at("used").get<std::uint32_t>()};
+  MoveSizes m;
+  js.at("move_sizes").at("translate").get_to(m.translate);
+  js.at("move_sizes").at("rotate").get_to(m.rotate);
+  m.log_volume = js.at("move_sizes").at("log_volume").get<double>();
+  engine_.restore(rng, counters_from_json(js.at("counters")), m);
+  tune_mark_ = counters_from_json(js.at("tune_mark"));
+  sample_mark_ = counters_from_json(js.at("sample_mark"));
+  summary_ = js.at("summary");
+  observables_ = std::move(observables);
+  frames_ = std::move(frames);
+}
+
+}  // namespace anisodyn

@@ -1,0 +1,120 @@
+#include "anisodyn/neighbors/cell_list.hpp"
+
+namespace anisodyn {
+
+namespace {
+// Cells per particle above which a grid stops refining: beyond it most cells are empty and
+// queries with long reach pay for visiting them.
+constexpr double kMaxCellsPerParticle = 2.0;
+}  // namespace
+
+void SpeciesGrid::configure(const Box& box, double self_cutoff, std::size_t count) {
+  const Vec3& L = box.edges();
+  double h = std::max(self_cutoff, 1e-12);
+  const double max_cells = std::max(1.0, kMaxCellsPerParticle * static_cast<double>(count));
+  for (;;) {
+    for (int k = 0; k < 3; ++k) n_[k] = std::max(1, static_cast<int>(std::floor(L[k] / h)));
+    if (static_cast<double>(n_.cast<double>().prod()) <= max_cells) break;
+    h *= 1.1;
+  }
+  for (int k = 0; k < 3; ++k) {
+    h_[k] = L[k] / n_[k];
+    inv_h_[k] = 1.0 / h_[k];
+  }
+  const double mean_occupancy = static_cast<double>(count) / n_.cast<double>().prod();
+  capacity_ = std::max<std::size_t>(8, static_cast<std::size_t>(std::ceil(3.0 * mean_occupancy)));
+  clear();
+}
+
+void SpeciesGrid::clear() {
+  const std::size_t cells = static_cast<std::size_t>(n_.prod());
+  count_.assign(cells, 0);
+  sx_.assign(cells * capacity_, 0.0);
+  sy_.assign(cells * capacity_, 0.0);
+  sz_.assign(cells * capacity_, 0.0);
+  sid_.assign(cells * capacity_, -1);
+}
+
+int SpeciesGrid::cell_of(const Vec3& r) const {
+  int c[3];
+  for (int k = 0; k < 3; ++k) c[k] = std::clamp(static_cast<int>(r[k] * inv_h_[k]), 0, n_[k] - 1);
+  return (c[0] * n_[1] + c[1]) * n_[2] + c[2];
+}
+
+void SpeciesGrid::place(std::int32_t particle, int cell, const Vec3& r) {
+  if (static_cast<std::size_t>(count_[cell]) == capacity_) grow_capacity();
+  const std::size_t slot = static_cast<std::size_t>(count_[cell]++);
+  const std::size_t at = static_cast<std::size_t>(cell) * capacity_ + slot;
+  sx_[at] = r.x(); sy_[at] = r.y(); sz_[at] = r.z();
+  sid_[at] = particle;
+  if (cell_.size() <= static_cast<std::size_t>(particle)) {
+    cell_.resize(static_cast<std::size_t>(particle) + 1, -1);
+    slot_.resize(static_cast<std::size_t>(particle) + 1, -1);
+  }
+  cell_[particle] = cell;
+  slot_[particle] = static_cast<std::int32_t>(slot);
+}
+
+void SpeciesGrid::insert(std::int32_t particle, const Vec3& r) { place(particle, cell_of(r), r); }
+
+void SpeciesGrid::remove(std::int32_t particle) {
+  const int cell = cell_[particle];
+  const std::size_t base = static_cast<std::size_t>(cell) * capacity_;
+  const std::size_t slot = static_cast<std::size_t>(slot_[particle]);
+  const std::size_t last = static_cast<std::size_t>(--count_[cell]);
+  if (slot != last) {  // fill the hole with the cell's last entry
+    sx_[base + slot] = sx_[base + last];
+    sy_[base + slot] = sy_[base + last];
+    sz_[base + slot] = sz_[base + last];
+    sid_[base + slot] = sid_[base + last];
+    slot_[sid_[base + slot]] = static_cast<std::int32_t>(slot);
+  }
+  cell_[particle] = -1;
+}
+
+void SpeciesGrid::move(std::int32_t particle, const Vec3& r) {
+  const int cell = cell_of(r);
+  if (cell == cell_[particle]) {
+    const std::size_t at = static_cast<std::size_t>(cell) * capacity_ + static_cast<std::size_t>(slot_[particle]);
+    sx_[at] = r.x(); sy_[at] = r.y(); sz_[at] = r.z();
+    return;
+  }
+  remove(particle);
+  place(particle, cell, r);
+}
+
+void SpeciesGrid::grow_capacity() {
+  const std::size_t old_cap = capacity_, cells = count_.size();
+  capacity_ *= 2;
+  std::vector<double> nx(cells * capacity_), ny(cells * capacity_), nz(cells * capacity_);
+  std::vector<std::int32_t> nid(cells * capacity_, -1);
+  for (std::size_t c = 0; c < cells; ++c) {
+    for (int s = 0; s < count_[c]; ++s) {
+      const std::size_t from = c * old_cap + static_cast<std::size_t>(s), to = c * capacity_ + static_cast<std::size_t>(s);
+      nx[to] = sx_[from]; ny[to] = sy_[from]; nz[to] = sz_[from]; nid[to] = sid_[from];
+    }
+  }
+  sx_.swap(nx); sy_.swap(ny); sz_.swap(nz); sid_.swap(nid);
+}
+
+void CellList::build(const Box& box, const std::vector<double>& x, const std::vector<double>& y,
+                     const std::vector<double>& z, const std::vector<std::int32_t>& species,
+                     const std::vector<double>& self_cutoffs, const std::vector<std::size_t>& expected_counts) {
+  box_ = box;
+  species_ = species;
+  grids_.assign(self_cutoffs.size(), SpeciesGrid());
+  std::vector<std::size_t> counts(self_cutoffs.size(), 0);
+  for (auto s : species) counts[static_cast<std::size_t>(s)]++;
+  for (std::size_t s = 0; s < expected_counts.size() && s < counts.size(); ++s) counts[s] = std::max(counts[s], expected_counts[s]);
+  for (std::size_t s = 0; s < grids_.size(); ++s) grids_[s].configure(box, self_cutoffs[s], counts[s]);
+  for (std::size_t i = 0; i < x.size(); ++i)
+    grids_[static_cast<std::size_t>(species[i])].insert(static_cast<std::int32_t>(i), Vec3(x[i], y[i], z[i]));
+}
+
+void CellList::insert(std::int32_t particle, int species, const Vec3& r) {
+  if (species_.size() <= static_cast<std::size_t>(particle)) species_.resize(static_cast<std::size_t>(particle) + 1, -1);
+  species_[static_cast<std::size_t>(particle)] = species;
+  grids_[static_cast<std::size_t>(species)].insert(particle, r);
+}
+
+}  // namespace anisodyn

@@ -1,0 +1,168 @@
+// MC engine against closed forms: ideal-gas NPT, a free cuboid in the orientational field, free
+// rotation (uniform orientations), and hard-sphere sweeps that never create an overlap.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "anisodyn/core/error.hpp"
+#include "anisodyn/core/statistics.hpp"
+#include "anisodyn/mc/mc_engine.hpp"
+
+using namespace anisodyn;
+
+namespace {
+
+State gas_of_points(std::size_t n, double edge) {
+  State s;
+  s.box = Box(Vec3::Constant(edge));
+  // Spheres small enough that they never meet: an ideal gas.
+  s.species.push_back(Species{"point", Shape::sphere(1e-9), 1.0, Vec3::Zero(), Vec3::Zero()});
+  Rng rng(99, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    s.particles.add(0, Vec3(rng.uniform() * edge, rng.uniform() * edge, rng.uniform() * edge), Quat::Identity(), static_cast<std::int64_t>(i));
+  return s;
+}
+
+State single_cuboid() {
+  State s;
+  s.box = Box(Vec3::Constant(100.0));
+  s.species.push_back(Species{"board", Shape::cuboid(1.0, 3.4641, 12.0), 1.0, Vec3::Zero(), Vec3::Zero()});
+  s.particles.add(0, Vec3(50, 50, 50), Quat::Identity(), 0);
+  return s;
+}
+
+}  // namespace
+
+TEST(McEngine, IdealGasNptMeanVolumeIsExact) {
+  // ln V moves with acceptance exp(-βPΔV + (N+1) ln V'/V) sample p(V) ∝ V^N exp(-βPV): <V> = (N+1)/βP.
+  const std::size_t n = 20;
+  const double beta_p = 0.5;
+  State s = gas_of_points(n, std::cbrt((n + 1) / beta_p));
+  McEngine mc(s, RngState{12345, 0, 0, 4});
+  mc.set_pressure(beta_p);
+  mc.move_sizes().log_volume = 0.5;
+  for (int c = 0; c < 2000; ++c) mc.cycle();
+  std::vector<double> v;
+  for (int c = 0; c < 100000; ++c) {
+    mc.cycle();
+    v.push_back(s.box.volume());
+  }
+  const MeanError m = block_average(v);
+  const double exact = (n + 1) / beta_p;
+  EXPECT_NEAR(m.mean, exact, 4.0 * m.error) << "mean " << m.mean << " ± " << m.error;
+  EXPECT_LT(m.error, 0.02 * exact);  // the test has power
+}
+
+TEST(McEngine, PerAxisBoxMovesSampleTheSameIdealGas) {
+  const std::size_t n = 10;
+  const double beta_p = 1.0;
+  State s = gas_of_points(n, std::cbrt((n + 1) / beta_p));
+  McEngine mc(s, RngState{777, 0, 0, 4});
+  mc.set_pressure(beta_p, BoxMoves::PerAxis);
+  mc.move_sizes().log_volume = 0.5;
+  std::vector<double> v;
+  for (int c = 0; c < 150000; ++c) {
+    mc.cycle();
+    if (c >= 2000) v.push_back(s.box.volume());
+  }
+  const MeanError m = block_average(v);
+  EXPECT_NEAR(m.mean, (n + 1) / beta_p, 4.0 * m.error) << "mean " << m.mean << " ± " << m.error;
+}
+
+TEST(McEngine, FreeCuboidInFieldFollowsBoltzmann) {
+  // With U = -(ε/2)(3c² - 1), c = ŵ·ê uniform on [-1, 1] without the field, the exact
+  // <P2(c)> = ∫ P2(c) e^{-U} dc / ∫ e^{-U} dc (quadrature below).
+  const double eps = 2.0;
+  State s = single_cuboid();
+  McEngine mc(s, RngState{4242, 0, 0, 4});
+  OrientationalField field;
+  field.strength = eps;
+  field.body_axis = 1;
+  field.direction = Vec3(1, 1, 0).normalized();
+  mc.set_field(field);
+  mc.move_sizes().rotate[0] = 0.6;
+  std::vector<double> p2;
+  for (int c = 0; c < 400000; ++c) {
+    mc.cycle();
+    const double cw = s.particles.orientation(0).toRotationMatrix().col(1).dot(field.direction);
+    p2.push_back(1.5 * cw * cw - 0.5);
+  }
+  double num = 0.0, den = 0.0;
+  const int q = 200000;
+  for (int k = 0; k < q; ++k) {
+    const double c = -1.0 + (k + 0.5) * 2.0 / q;
+    const double w = std::exp(0.5 * eps * (3.0 * c * c - 1.0));
+    num += (1.5 * c * c - 0.5) * w;
+    den += w;
+  }
+  const MeanError m = block_average(p2);
+  EXPECT_NEAR(m.mean, num / den, 4.0 * m.error) << "MC " << m.mean << " ± " << m.error << " exact " << num / den;
+}
+
+TEST(McEngine, FreeCuboidOrientationsBecomeUniform) {
+  State s = single_cuboid();
+  McEngine mc(s, RngState{5, 0, 0, 4});
+  mc.move_sizes().rotate[0] = 0.8;
+  std::vector<double> p2[3];
+  for (int c = 0; c < 200000; ++c) {
+    mc.cycle();
+    const Mat3 r = s.particles.orientation(0).toRotationMatrix();
+    for (int k = 0; k < 3; ++k) p2[k].push_back(1.5 * r(2, k) * r(2, k) - 0.5);
+  }
+  for (int k = 0; k < 3; ++k) {
+    const MeanError m = block_average(p2[k]);
+    EXPECT_NEAR(m.mean, 0.0, 4.0 * m.error) << "axis " << k;
+  }
+}
+
+TEST(McEngine, DenseHardSpheresNeverOverlap) {
+  State s;
+  const int side = 6;
+  const double a = 1.05;  // simple cubic lattice, η ≈ 0.45
+  s.box = Box(Vec3::Constant(side * a));
+  s.species.push_back(Species{"hs", Shape::sphere(1.0), 1.0, Vec3::Zero(), Vec3::Zero()});
+  for (int i = 0; i < side; ++i)
+    for (int j = 0; j < side; ++j)
+      for (int k = 0; k < side; ++k) s.particles.add(0, a * Vec3(i + 0.5, j + 0.5, k + 0.5), Quat::Identity(), i * 36 + j * 6 + k);
+  McEngine mc(s, RngState{1, 0, 0, 4});
+  mc.set_pressure(3.0);
+  MoveCounters mark = mc.counters();
+  for (int c = 0; c < 300; ++c) {
+    mc.cycle();
+    if (c % 20 == 19) {
+      mc.tune(0.35, mc.counters().since(mark));
+      mark = mc.counters();
+    }
+  }
+  EXPECT_FALSE(mc.overlap().first_overlap().has_value());
+  const auto& n = mc.counters();
+  EXPECT_GT(n.translate_accepted[0], 0);
+  EXPECT_LT(n.translate_accepted[0], n.translate_tried[0]);
+  EXPECT_GT(n.volume_accepted, 0);
+}
+
+TEST(McEngine, RejectsOverlappingInput) {
+  State s;
+  s.box = Box(Vec3::Constant(10));
+  s.species.push_back(Species{"hs", Shape::sphere(1.0), 1.0, Vec3::Zero(), Vec3::Zero()});
+  s.particles.add(0, Vec3(1, 1, 1), Quat::Identity(), 0);
+  s.particles.add(0, Vec3(1.5, 1, 1), Quat::Identity(), 1);
+  EXPECT_THROW(McEngine(s, RngState{}), InputError);
+}
+
+TEST(BlockAverage, RecoversTheErrorOfACorrelatedSeries) {
+  // AR(1) with coefficient φ: the standard error of the mean is σ/√n · √((1+φ)/(1−φ)).
+  const double phi = 0.9;
+  const std::size_t n = 1 << 18;
+  Rng rng(8, 8);
+  std::vector<double> x(n);
+  double v = 0.0;
+  for (auto& xi : x) {
+    v = phi * v + std::sqrt(1 - phi * phi) * rng.normal();
+    xi = v;
+  }
+  const MeanError m = block_average(x);
+  const double exact = std::sqrt((1 + phi) / (1 - phi) / static_cast<double>(n));
+  EXPECT_NEAR(m.error, exact, 0.25 * exact);
+  EXPECT_NEAR(m.mean, 0.0, 4 * exact);
+}
