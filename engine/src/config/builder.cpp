@@ -100,11 +100,13 @@ void place_on_lattice(State& state, const PlacementRequest& req, Rng& rng) {
 }
 
 void insert_randomly(State& state, const PlacementRequest& req, Rng& rng) {
-  auto particles = draw_particles(req, rng);
-  // Largest first: small particles fill the gaps afterwards.
-  std::stable_sort(particles.begin(), particles.end(), [&](const auto& a, const auto& b) {
-    return state.species[static_cast<std::size_t>(a.first)].shape.volume() > state.species[static_cast<std::size_t>(b.first)].shape.volume();
-  });
+  const auto particles = draw_particles(req, rng);
+  // Largest first: small particles fill the gaps afterwards. (Indices are sorted, not the pairs:
+  // std::stable_sort's scratch buffer does not honour Eigen's quaternion alignment.)
+  std::vector<std::size_t> order(particles.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  auto volume = [&](std::size_t k) { return state.species[static_cast<std::size_t>(particles[k].first)].shape.volume(); };
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return volume(a) > volume(b); });
   std::vector<std::size_t> expected(state.species.size(), 0);
   for (auto s : state.particles.species) expected[static_cast<std::size_t>(s)]++;
   for (std::size_t s = 0; s < req.counts.size(); ++s) expected[s] += req.counts[s];
@@ -112,7 +114,7 @@ void insert_randomly(State& state, const PlacementRequest& req, Rng& rng) {
   std::int64_t id = next_id(state);
   const Vec3& L = state.box.edges();
   for (std::size_t m = 0; m < particles.size(); ++m) {
-    const auto& [s, q] = particles[m];
+    const auto& [s, q] = particles[order[m]];
     const Mat3 rot = q.toRotationMatrix();
     const std::int32_t i = static_cast<std::int32_t>(state.particles.size());
     bool placed = false;

@@ -38,7 +38,7 @@ std::map<std::string, int> merge_species(SpeciesTable& table, io::ConfigNode& cf
       index[sp.name] = static_cast<int>(table.size());
       table.push_back(sp);
     } else if (species_to_json(table[static_cast<std::size_t>(it->second)]) != species_to_json(sp)) {
-      n.fail("name", "a new species name or the same definition as in the input ('" + sp.name + "' differs)");
+      n.fail("name", "expected a new species name or the same definition as in the input ('" + sp.name + "' differs)");
     }
   }
   return index;
@@ -49,18 +49,18 @@ std::map<std::string, int> merge_species(SpeciesTable& table, io::ConfigNode& cf
 State build_configuration(io::ConfigNode& cfg, const std::optional<State>& existing, std::uint64_t seed) {
   State state;
   if (existing) state = *existing;
-  if (!existing && !cfg.has("species")) cfg.fail("species", "the species table (an array of species)");
+  if (!existing && !cfg.has("species")) cfg.fail("species", "expected the species table (an array of species)");
   const auto index = merge_species(state.species, cfg);
 
   PlacementRequest req;
   req.counts.assign(state.species.size(), 0);
   req.rules.resize(state.species.size());
   auto entries = cfg.objects("composition");
-  if (entries.empty()) cfg.fail("composition", "at least one {\"species\": name, \"count\": n} entry");
+  if (entries.empty()) cfg.fail("composition", "expected at least one {\"species\": name, \"count\": n} entry");
   for (auto& e : entries) {
     const std::string name = e.string("species");
     auto it = index.find(name);
-    if (it == index.end()) e.fail("species", "the name of a species in the table");
+    if (it == index.end()) e.fail("species", "expected the name of a species in the table");
     const std::size_t s = static_cast<std::size_t>(it->second);
     req.counts[s] += static_cast<std::size_t>(e.positive_integer("count"));
     req.rules[s] = parse_orientation(e.optional_object("orientation"), state.species[s].shape);
@@ -69,16 +69,16 @@ State build_configuration(io::ConfigNode& cfg, const std::optional<State>& exist
 
   const std::string placement = cfg.choice("placement", {"lattice", "random"}, existing ? "random" : "lattice");
   if (existing) {
-    if (placement != "random") cfg.fail("placement", "\"random\" when inserting into an existing configuration");
-    if (cfg.has("box")) cfg.fail("box", "no box when inserting into an existing configuration (its box is kept)");
+    if (placement != "random") cfg.fail("placement", "expected \"random\" when inserting into an existing configuration");
+    if (cfg.has("box")) cfg.fail("box", "expected no box when inserting into an existing configuration (its box is kept)");
   } else {
     auto box = cfg.object("box");
-    if (box.has("edges") == box.has("packing_fraction")) box.fail("", "either \"edges\" or \"packing_fraction\" (with optional \"aspect\")");
+    if (box.has("edges") == box.has("packing_fraction")) box.fail("", "expected either \"edges\" or \"packing_fraction\" (with optional \"aspect\")");
     if (box.has("edges")) {
       state.box = Box(box.positive_vec3("edges"));
     } else {
       const double eta = box.positive("packing_fraction");
-      if (eta >= 1.0) box.fail("packing_fraction", "a packing fraction below 1");
+      if (eta >= 1.0) box.fail("packing_fraction", "expected a packing fraction below 1");
       state.box = Box(box_edges_for_packing_fraction(state.species, req.counts, eta, box.positive_vec3("aspect", Vec3::Ones())));
     }
   }
@@ -87,7 +87,7 @@ State build_configuration(io::ConfigNode& cfg, const std::optional<State>& exist
   // Minimum image needs every edge to be at least twice the largest interaction range.
   const double largest = largest_pair_cutoff(state.species);
   if (state.box.shortest_edge() < 2.0 * largest)
-    cfg.fail(existing ? "" : "box", "box edges of at least " + std::to_string(2.0 * largest) +
+    cfg.fail(existing ? "" : "box", "expected box edges of at least " + std::to_string(2.0 * largest) +
                                         " (twice the largest cut-off, for the minimum image); the box is " +
                                         std::to_string(state.box.shortest_edge()) + " across");
 
@@ -96,7 +96,7 @@ State build_configuration(io::ConfigNode& cfg, const std::optional<State>& exist
     if (placement == "lattice") place_on_lattice(state, req, rng);
     else insert_randomly(state, req, rng);
   } catch (const PlacementFailure& e) {
-    cfg.fail(existing ? "composition" : "box.packing_fraction", std::string("a reachable configuration: ") + e.what());
+    cfg.fail(existing ? "composition" : "box.packing_fraction", std::string("packing fraction cannot be reached: ") + e.what());
   }
   if (placement == "lattice") {  // defensive: the lattice spacing rules out overlaps by construction
     if (HardOverlap(state).first_overlap()) throw RuntimeFailure("internal error: the lattice placement overlaps");

@@ -22,6 +22,7 @@ Progress::Progress(std::string label, std::int64_t total, bool quiet, double log
       log_interval_(log_interval_s), start_(Clock::now()), last_(start_) {}
 
 void Progress::update(std::int64_t done, const std::string& detail) {
+  done_ = done;
   if (quiet_) return;
   const auto now = Clock::now();
   const double since_last = std::chrono::duration<double>(now - last_).count();
@@ -40,7 +41,7 @@ void Progress::finish(const std::string& detail) {
   if (quiet_) return;
   const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
   std::fprintf(stderr, "%s%s: done %lld in %s%s%s\n", tty_ ? "\r\033[K" : "", label_.c_str(),
-               static_cast<long long>(total_), format_duration(elapsed).c_str(), detail.empty() ? "" : "  ", detail.c_str());
+               static_cast<long long>(done_ > 0 ? done_ : total_), format_duration(elapsed).c_str(), detail.empty() ? "" : "  ", detail.c_str());
 }
 
 }  // namespace anisodyn

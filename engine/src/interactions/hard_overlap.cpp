@@ -53,14 +53,34 @@ void HardOverlap::inserted(std::int32_t i) {
 
 bool HardOverlap::overlaps(std::int32_t i, const Vec3& r, const Mat3& rot) const {
   const auto& species = state_->species;
-  const auto& spec = state_->particles.species;
-  const int a = spec[static_cast<std::size_t>(i)];
+  const int a = state_->particles.species[static_cast<std::size_t>(i)];
   const Shape& sa = species[static_cast<std::size_t>(a)].shape;
   for (int b = 0; b < nspecies_; ++b) {
     const Shape& sb = species[static_cast<std::size_t>(b)].shape;
-    const bool hit = cells_.visit(b, r, cutoff(a, b), [&](std::int32_t j, const Vec3& d, double) {
-      return j != i && overlap(sa, rot, sb, rot_[static_cast<std::size_t>(j)], d);
-    });
+    const double rc = cutoff(a, b);
+    // The common pairs get their kernel inlined into the candidate loop; every other registered
+    // pair goes through the generic dispatcher.
+    auto scan = [&](auto&& kernel) {
+      return cells_.visit(b, r, rc, [&](std::int32_t j, const Vec3& d, double r2) { return j != i && kernel(j, d, r2); });
+    };
+    bool hit;
+    if (sa.kind == ShapeKind::Sphere && sb.kind == ShapeKind::Sphere) {
+      // The cut-off is the contact distance and the cell list keeps r² ≤ rc²: every candidate overlaps.
+      hit = scan([](std::int32_t, const Vec3&, double) { return true; });
+    } else if (sa.kind == ShapeKind::Cuboid && sb.kind == ShapeKind::Cuboid) {
+      const Vec3 ha = sa.half_extents(), hb = sb.half_extents();
+      hit = scan([&](std::int32_t j, const Vec3& d, double) { return overlap_cuboid_cuboid(ha, rot, hb, rot_[static_cast<std::size_t>(j)], d); });
+    } else if (sa.kind == ShapeKind::Cuboid && sb.kind == ShapeKind::Sphere) {
+      const Vec3 ha = sa.half_extents();
+      const double rb = 0.5 * sb.diameter;
+      hit = scan([&](std::int32_t, const Vec3& d, double) { return overlap_cuboid_sphere(rot, ha, d, rb); });
+    } else if (sa.kind == ShapeKind::Sphere && sb.kind == ShapeKind::Cuboid) {
+      const Vec3 hb = sb.half_extents();
+      const double ra = 0.5 * sa.diameter;
+      hit = scan([&](std::int32_t j, const Vec3& d, double) { return overlap_cuboid_sphere(rot_[static_cast<std::size_t>(j)], hb, Vec3(-d), ra); });
+    } else {
+      hit = scan([&](std::int32_t j, const Vec3& d, double) { return overlap(sa, rot, sb, rot_[static_cast<std::size_t>(j)], d); });
+    }
     if (hit) return true;
   }
   return false;

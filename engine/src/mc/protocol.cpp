@@ -61,12 +61,12 @@ void McRunner::sample() {
     record("acceptance_volume", {MoveCounters::ratio(w.volume_accepted, w.volume_tried)}, "acceptance of volume moves since the previous sample");
   for (std::size_t s = 0; s < state_.species.size(); ++s) {
     const auto& sp = state_.species[s];
-    record("acceptance/" + sp.name,
+    record("acceptance_" + sp.name,
            {MoveCounters::ratio(w.translate_accepted[s], w.translate_tried[s]), MoveCounters::ratio(w.rotate_accepted[s], w.rotate_tried[s])},
            "acceptance of translation and rotation trials since the previous sample");
     if (!sp.shape.is_anisotropic()) continue;
     const auto order = body_axis_order(state_, static_cast<int>(s));
-    record("order/" + sp.name, {order[0].order, order[1].order, order[2].order},
+    record("order_" + sp.name, {order[0].order, order[1].order, order[2].order},
            "uniaxial order parameters U_T, U_W, U_L: largest eigenvalue of the Q tensor of each body axis");
   }
   if (protocol_.field.active())
@@ -175,11 +175,11 @@ void McRunner::summarise_phase(const McPhase& phase, std::int64_t first_step) {
   js["packing_fraction"] = stats(column("packing_fraction", 0));
   bool nematic = false;
   for (const auto& sp : state_.species) {
-    js["acceptance"][sp.name] = {{"translate", stats(column("acceptance/" + sp.name, 0))["mean"]}};
+    js["acceptance"][sp.name] = {{"translate", stats(column("acceptance_" + sp.name, 0))["mean"]}};
     if (!sp.shape.is_anisotropic()) continue;
-    js["acceptance"][sp.name]["rotate"] = stats(column("acceptance/" + sp.name, 1))["mean"];
+    js["acceptance"][sp.name]["rotate"] = stats(column("acceptance_" + sp.name, 1))["mean"];
     for (std::size_t k = 0; k < 3; ++k) {
-      auto st = stats(column("order/" + sp.name, k));
+      auto st = stats(column("order_" + sp.name, k));
       nematic = nematic || st["mean"].get<double>() > kNematicThreshold;
       js["order"][sp.name][kAxisNames[k]] = st;
     }

@@ -15,10 +15,10 @@ McPhase parse_phase(io::ConfigNode n, std::size_t index) {
   if (type == "compress") {
     p.type = McPhase::Type::Compress;
     p.target_packing_fraction = n.positive("packing_fraction");
-    if (p.target_packing_fraction >= 1.0) n.fail("packing_fraction", "a packing fraction below 1");
+    if (p.target_packing_fraction >= 1.0) n.fail("packing_fraction", "expected a packing fraction below 1");
     if (n.has("pressure_start")) p.pressure_start = n.positive("pressure_start");
     p.pressure_growth = n.positive("pressure_growth", 1.25);
-    if (p.pressure_growth <= 1.0) n.fail("pressure_growth", "a factor greater than 1");
+    if (p.pressure_growth <= 1.0) n.fail("pressure_growth", "expected a factor greater than 1");
     p.cycles_per_step = n.positive_integer("cycles_per_step", 200);
     p.max_cycles = n.positive_integer("max_cycles", 1000000);
     p.squeeze_sweeps = n.positive_integer("squeeze_sweeps", 5);
@@ -46,7 +46,7 @@ OrientationalField parse_orientational_field(io::ConfigNode n) {
   const std::string axis = n.choice("axis", {"T", "W", "L"}, "W");
   f.body_axis = axis == "T" ? 0 : axis == "W" ? 1 : 2;
   const Vec3 d = n.vec3("direction", Vec3::UnitX());
-  if (d.norm() == 0.0) n.fail("direction", "a non-zero direction vector");
+  if (d.norm() == 0.0) n.fail("direction", "expected a non-zero direction vector");
   f.direction = d.normalized();
   return f;
 }
@@ -55,13 +55,13 @@ McProtocol parse_mc_protocol(io::ConfigNode& cfg) {
   McProtocol p;
   p.seed = static_cast<std::uint64_t>(cfg.non_negative_integer("seed", 1));
   p.target_acceptance = cfg.positive("target_acceptance", 0.35);
-  if (p.target_acceptance >= 1.0) cfg.fail("target_acceptance", "an acceptance between 0 and 1");
+  if (p.target_acceptance >= 1.0) cfg.fail("target_acceptance", "expected an acceptance between 0 and 1");
   p.tune_every = cfg.positive_integer("tune_every", 100);
   p.sample_every = cfg.positive_integer("sample_every", 10);
   p.frame_every = cfg.non_negative_integer("frame_every", 0);
   if (auto f = cfg.optional_object("field")) p.field = parse_orientational_field(*f);
   auto phases = cfg.objects("phases");
-  if (phases.empty()) cfg.fail("phases", "at least one phase (compress, npt or nvt)");
+  if (phases.empty()) cfg.fail("phases", "expected at least one phase (compress, npt or nvt)");
   for (std::size_t i = 0; i < phases.size(); ++i) p.phases.push_back(parse_phase(phases[i], i));
   return p;
 }

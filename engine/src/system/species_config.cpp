@@ -39,18 +39,18 @@ Shape parse_shape(io::ConfigNode node) {
   const std::string type = node.choice("type", names);
   for (const auto& r : kShapeRegistry)
     if (type == r.type) return r.parse(node);
-  node.fail("type", "a known shape type");
+  node.fail("type", "expected a known shape type");
 }
 
 Species parse_species(io::ConfigNode node) {
   Species s;
   s.name = node.string("name");
-  if (s.name.empty()) node.fail("name", "a non-empty species name");
+  if (s.name.empty()) node.fail("name", "expected a non-empty species name");
   s.shape = parse_shape(node.object("shape"));
   s.mass = node.positive("mass", 1.0);
   auto non_negative_vec3 = [&](const std::string& key) {
     const Vec3 v = node.vec3(key, Vec3::Zero());
-    if (v.minCoeff() < 0.0) node.fail(key, "three non-negative diffusion coefficients (body axes T, W, L)");
+    if (v.minCoeff() < 0.0) node.fail(key, "expected three non-negative diffusion coefficients (body axes T, W, L)");
     return v;
   };
   s.D_trans = non_negative_vec3("D_trans");
@@ -62,10 +62,10 @@ SpeciesTable parse_species_table(io::ConfigNode& parent, const std::string& key)
   SpeciesTable table;
   std::set<std::string> seen;
   auto nodes = parent.objects(key);
-  if (nodes.empty()) parent.fail(key, "at least one species");
+  if (nodes.empty()) parent.fail(key, "expected at least one species");
   for (auto& n : nodes) {
     table.push_back(parse_species(n));
-    if (!seen.insert(table.back().name).second) n.fail("name", "a unique species name ('" + table.back().name + "' is repeated)");
+    if (!seen.insert(table.back().name).second) n.fail("name", "expected a unique species name ('" + table.back().name + "' is repeated)");
   }
   return table;
 }

@@ -17,7 +17,7 @@ class Progress {
  private:
   using Clock = std::chrono::steady_clock;
   std::string label_;
-  std::int64_t total_;
+  std::int64_t total_, done_ = 0;
   bool quiet_, tty_;
   double log_interval_;
   Clock::time_point start_, last_;

@@ -1,0 +1,1 @@
+anisodyn_add_script_test(bad_input bad_input.sh)

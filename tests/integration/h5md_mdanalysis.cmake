@@ -1,0 +1,1 @@
+anisodyn_add_script_test(h5md_mdanalysis h5md_mdanalysis.py)

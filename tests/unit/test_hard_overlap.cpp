@@ -1,0 +1,73 @@
+// HardOverlap (cell list + kernels) against an O(N²) brute-force overlap search with the generic
+// dispatcher, for trial moves in dense mixtures, and after NPT volume moves.
+#include <gtest/gtest.h>
+
+#include "anisodyn/config/builder.hpp"
+#include "anisodyn/core/quaternion.hpp"
+#include "anisodyn/geometry/overlap.hpp"
+#include "anisodyn/interactions/hard_overlap.hpp"
+#include "anisodyn/mc/mc_engine.hpp"
+
+using namespace anisodyn;
+
+namespace {
+
+bool brute_force_overlaps(const State& s, std::size_t i, const Vec3& r, const Mat3& rot) {
+  const Shape& a = s.species[static_cast<std::size_t>(s.particles.species[i])].shape;
+  for (std::size_t j = 0; j < s.particles.size(); ++j) {
+    if (j == i) continue;
+    const Shape& b = s.species[static_cast<std::size_t>(s.particles.species[j])].shape;
+    const Vec3 t = s.box.min_image(s.particles.position(j) - r);
+    if (overlap(a, rot, b, s.particles.orientation(j).toRotationMatrix(), t)) return true;
+  }
+  return false;
+}
+
+void compare_trials(const State& s, const HardOverlap& ho, Rng& rng, int trials, double step) {
+  int hits = 0;
+  for (int t = 0; t < trials; ++t) {
+    const std::size_t i = rng.index(s.particles.size());
+    Vec3 r = s.particles.position(i) + Vec3(rng.uniform(-step, step), rng.uniform(-step, step), rng.uniform(-step, step));
+    Int3 image(0, 0, 0);
+    s.box.wrap(r, image);
+    const Quat q = rotate_in_body_frame(s.particles.orientation(i), Vec3(rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3)));
+    const Mat3 rot = q.toRotationMatrix();
+    const bool expected = brute_force_overlaps(s, i, r, rot);
+    hits += expected;
+    ASSERT_EQ(ho.overlaps(static_cast<std::int32_t>(i), r, rot), expected) << "trial " << t << " particle " << i;
+  }
+  // Both outcomes must occur, or the comparison says little.
+  EXPECT_GT(hits, trials / 20);
+  EXPECT_LT(hits, trials - trials / 20);
+}
+
+}  // namespace
+
+TEST(HardOverlap, MatchesBruteForceForHardSpheresAfterVolumeMoves) {
+  State s;
+  s.species.push_back(Species{"hs", Shape::sphere(1.0), 1.0, {}, {}});
+  s.box = Box(box_edges_for_packing_fraction(s.species, {500}, 0.3, Vec3::Ones()));
+  PlacementRequest req{{500}, {OrientationRule{}}, 10000};
+  Rng rng(17, 0);
+  place_on_lattice(s, req, rng);
+  McEngine mc(s, RngState{3, 0, 0, 4});
+  mc.set_pressure(8.0);
+  for (int c = 0; c < 200; ++c) mc.cycle();
+  ASSERT_GT(mc.counters().volume_accepted, 0);
+  HardOverlap fresh(s);
+  compare_trials(s, fresh, rng, 4000, 0.3);
+  compare_trials(s, mc.overlap(), rng, 4000, 0.3);  // the engine's incrementally updated copy
+}
+
+TEST(HardOverlap, MatchesBruteForceForBoardsAndSpheres) {
+  State s;
+  s.species.push_back(Species{"board", Shape::cuboid(1.0, 3.4641, 12.0), 1.0, {}, {}});
+  s.species.push_back(Species{"tracer", Shape::sphere(0.5), 1.0, {}, {}});
+  s.box = Box(Vec3(30, 30, 40));
+  PlacementRequest req{{150, 100}, {OrientationRule{OrientationRule::Mode::Random}, OrientationRule{}}, 100000};
+  Rng rng(5, 0);
+  insert_randomly(s, req, rng);
+  HardOverlap ho(s);
+  EXPECT_FALSE(ho.first_overlap().has_value());
+  compare_trials(s, ho, rng, 3000, 1.0);
+}
