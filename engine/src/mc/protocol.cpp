@@ -115,16 +115,24 @@ void McRunner::run_compress_phase(const McPhase& phase, std::int64_t checkpoint_
   };
   if (!cursor_.squeezing) {
     if (cursor_.compress_pressure <= 0.0)
-      cursor_.compress_pressure = phase.pressure_start.value_or(static_cast<double>(state_.particles.size()) / state_.box.volume());
+      // Default: the ideal-gas pressure at the target density, a safe underestimate of the real one.
+      cursor_.compress_pressure = phase.pressure_start.value_or(static_cast<double>(state_.particles.size()) / target_volume);
+    // Raise βP only while η rises more slowly than the target rate (plateau_tolerance per step): a
+    // fixed schedule outruns the slow volume relaxation of large systems and sends βP to absurd
+    // values, which jams the particles. βP is also capped at 50× the ideal-gas value at the target.
     while (state_.packing_fraction() < target * (1.0 - phase.squeeze_window)) {
       engine_.set_pressure(cursor_.compress_pressure, phase.box_moves);
+      const double eta_before = state_.packing_fraction();
       const std::int64_t step_end = (cursor_.cycle_in_phase / phase.cycles_per_step + 1) * phase.cycles_per_step;
       while (cursor_.cycle_in_phase < step_end) {
         one_cycle(phase, checkpoint_every, checkpoint);
         progress.update(cursor_.cycle_in_phase, phase_detail(state_, engine_) + " betaP=" + std::to_string(cursor_.compress_pressure));
       }
       check_budget();
-      if (state_.packing_fraction() < target * (1.0 - phase.squeeze_window)) cursor_.compress_pressure *= phase.pressure_growth;
+      const double eta_after = state_.packing_fraction();
+      const double cap = 50.0 * static_cast<double>(state_.particles.size()) / target_volume;
+      if (eta_after < target * (1.0 - phase.squeeze_window) && eta_after < eta_before * (1.0 + phase.plateau_tolerance))
+        cursor_.compress_pressure = std::min(cap, cursor_.compress_pressure * phase.pressure_growth);
     }
     cursor_.squeezing = true;
   }

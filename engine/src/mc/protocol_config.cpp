@@ -17,12 +17,13 @@ McPhase parse_phase(io::ConfigNode n, std::size_t index) {
     p.target_packing_fraction = n.positive("packing_fraction");
     if (p.target_packing_fraction >= 1.0) n.fail("packing_fraction", "expected a packing fraction below 1");
     if (n.has("pressure_start")) p.pressure_start = n.positive("pressure_start");
-    p.pressure_growth = n.positive("pressure_growth", 1.25);
+    p.pressure_growth = n.positive("pressure_growth", 1.5);
     if (p.pressure_growth <= 1.0) n.fail("pressure_growth", "expected a factor greater than 1");
     p.cycles_per_step = n.positive_integer("cycles_per_step", 200);
     p.max_cycles = n.positive_integer("max_cycles", 1000000);
     p.squeeze_sweeps = n.positive_integer("squeeze_sweeps", 5);
     p.squeeze_window = n.non_negative("squeeze_window", 0.02);
+    p.plateau_tolerance = n.non_negative("plateau_tolerance", 0.005);
     p.box_moves = parse_box_moves(n);
     p.tune = n.boolean("tune", true);
   } else if (type == "npt") {

@@ -32,12 +32,13 @@ struct McPhase {
   BoxMoves box_moves = BoxMoves::Isotropic;
   // compress
   double target_packing_fraction = 0.0;
-  std::optional<double> pressure_start;  // default: ideal-gas pressure of the current state
+  std::optional<double> pressure_start;  // default: ideal-gas pressure at the target density
   double pressure_growth = 1.25;
   std::int64_t cycles_per_step = 200;
   std::int64_t max_cycles = 1000000;
   std::int64_t squeeze_sweeps = 5;
   double squeeze_window = 0.02;    // the ramp stops once η ≥ target·(1 − window); squeezes do the rest
+  double plateau_tolerance = 0.005;  // βP grows only while a step raises η by less than this fraction
   std::string expect_phase;  // "", "isotropic" or "nematic": checked at the end of the phase
 };
 

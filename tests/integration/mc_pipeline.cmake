@@ -1,0 +1,1 @@
+anisodyn_add_script_test(mc_pipeline mc_pipeline.py)
