@@ -1,4 +1,5 @@
 #pragma once
+#include <gtest/gtest.h>
 // Random pairs of bodies for the overlap-kernel tests (test_overlap_random_pairs[_slow]).
 //
 // Shapes come from families that contain the project's real shapes (spec 10 §1): boards
@@ -226,6 +227,25 @@ inline RandomPairStats run_random_pairs(PairFamily family, std::int64_t n, std::
   std::printf("\n");
   std::fflush(stdout);
   return st;
+}
+
+/// The assertions shared by the fast (10^6) and slow (10^7) random-pair tests.
+inline void check_random_pairs(PairFamily family, std::int64_t pairs, std::uint64_t seed) {
+  const RandomPairStats st = run_random_pairs(family, pairs, seed);
+  EXPECT_EQ(st.pairs, pairs);
+  EXPECT_EQ(st.disagreements, 0) << family_name(family);
+  EXPECT_EQ(st.dispatcher_mismatches, 0) << family_name(family);
+  // Indeterminate pairs (within the reference band of contact) are counted, never dropped silently.
+  EXPECT_LT(double(st.indeterminate), 1e-4 * double(pairs)) << family_name(family);
+  // The sample must really probe both verdicts and the contact region.
+  const double f_overlap = double(st.overlapping) / double(st.pairs);
+  const double f_near = double(st.near_contact) / double(st.pairs);
+  EXPECT_GT(f_overlap, 0.2);
+  EXPECT_LT(f_overlap, 0.8);
+  EXPECT_NEAR(f_near, 0.5, 0.01);
+  if (family == PairFamily::CuboidSphere) {
+    EXPECT_LT(st.max_dmin2_error, 1e-13);
+  }
 }
 
 }  // namespace anisodyn::testing_support

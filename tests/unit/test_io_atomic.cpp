@@ -2,6 +2,8 @@
 // unusable output paths refused before anything is created.
 #include <gtest/gtest.h>
 
+#include "scratch_dir.hpp"
+
 #include <stdlib.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -20,24 +22,15 @@ namespace fs = std::filesystem;
 
 namespace {
 
-class Atomic : public ::testing::Test {
+class Atomic : public anisodyn::testing_support::ScratchDirTest {
  protected:
-  void SetUp() override {
-    const char* base = std::getenv("ANISODYN_TEST_TMP");
-    const std::string root = base && *base ? base : fs::temp_directory_path().string();
-    fs::create_directories(root);
-    std::string templ = root + "/io-atomic-XXXXXX";
-    ASSERT_NE(mkdtemp(templ.data()), nullptr);
-    dir_ = templ;
-  }
+  Atomic() : ScratchDirTest("io-atomic") {}
   void TearDown() override {
     std::error_code ec;
-    fs::permissions(dir_ + "/readonly", fs::perms::owner_all, ec);
-    fs::remove_all(dir_);
+    fs::permissions(dir_ + "/readonly", fs::perms::owner_all, ec);  // so the directory can be removed
+    ScratchDirTest::TearDown();
   }
-  std::string file(const std::string& name) const { return dir_ + "/" + name; }
   std::size_t entries() const { return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir_), fs::directory_iterator())); }
-  std::string dir_;
 };
 
 State small_state() {

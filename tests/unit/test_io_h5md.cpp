@@ -1,5 +1,7 @@
 // io: H5MD round trips (bit-for-bit), observables, checkpoints and error reporting for bad files.
 #include <gtest/gtest.h>
+
+#include "scratch_dir.hpp"
 #include <hdf5.h>
 
 #include <stdlib.h>
@@ -25,19 +27,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-class H5md : public ::testing::Test {
+class H5md : public anisodyn::testing_support::ScratchDirTest {
  protected:
-  void SetUp() override {
-    const char* base = std::getenv("ANISODYN_TEST_TMP");
-    const std::string root = base && *base ? base : fs::temp_directory_path().string();
-    fs::create_directories(root);
-    std::string templ = root + "/io-h5md-XXXXXX";
-    ASSERT_NE(mkdtemp(templ.data()), nullptr);
-    dir_ = templ;
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string file(const std::string& name) const { return dir_ + "/" + name; }
-  std::string dir_;
+  H5md() : ScratchDirTest("io-h5md") {}
 };
 
 SpeciesTable two_species() {

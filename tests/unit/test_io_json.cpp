@@ -1,6 +1,8 @@
 // io: JSON configuration loading, --set overrides and ConfigNode's typed, path-naming access.
 #include <gtest/gtest.h>
 
+#include "scratch_dir.hpp"
+
 #include <stdlib.h>
 
 #include <cstdlib>
@@ -17,17 +19,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-class JsonFiles : public ::testing::Test {
+class JsonFiles : public anisodyn::testing_support::ScratchDirTest {
  protected:
-  void SetUp() override {
-    const char* base = std::getenv("ANISODYN_TEST_TMP");
-    const std::string root = base && *base ? base : fs::temp_directory_path().string();
-    fs::create_directories(root);
-    std::string templ = root + "/io-json-XXXXXX";
-    ASSERT_NE(mkdtemp(templ.data()), nullptr);
-    dir_ = templ;
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+  JsonFiles() : ScratchDirTest("io-json") {}
   std::string write(const std::string& name, const std::string& content) const {
     const std::string path = dir_ + "/" + name;
     std::ofstream(path) << content;

@@ -1,6 +1,8 @@
 // io: SHA-256 against the FIPS 180-2 test vectors, file hashing and provenance records.
 #include <gtest/gtest.h>
 
+#include "scratch_dir.hpp"
+
 #include <stdlib.h>
 
 #include <cstdlib>
@@ -18,19 +20,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-class Scratch : public ::testing::Test {
+class Scratch : public anisodyn::testing_support::ScratchDirTest {
  protected:
-  void SetUp() override {
-    const char* base = std::getenv("ANISODYN_TEST_TMP");
-    const std::string root = base && *base ? base : fs::temp_directory_path().string();
-    fs::create_directories(root);
-    std::string templ = root + "/io-sha-XXXXXX";
-    ASSERT_NE(mkdtemp(templ.data()), nullptr);
-    dir_ = templ;
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string file(const std::string& name) const { return dir_ + "/" + name; }
-  std::string dir_;
+  Scratch() : ScratchDirTest("io-sha") {}
 };
 
 void write_file(const std::string& path, const std::string& content) {
