@@ -24,6 +24,12 @@ const char* type_name(McPhase::Type t) {
 
 const char* kAxisNames[3] = {"T", "W", "L"};
 
+std::string format_mean_error(const nlohmann::json& stats) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.4f ± %.4f", stats["mean"].get<double>(), stats["error"].get<double>());
+  return buf;
+}
+
 std::string phase_detail(const State& s, const McEngine& e) {
   char buf[96];
   std::snprintf(buf, sizeof buf, "eta=%.4f dlnV=%.3g", s.packing_fraction(), e.move_sizes().log_volume);
@@ -178,7 +184,14 @@ void McRunner::summarise_phase(const McPhase& phase, std::int64_t first_step) {
     const std::vector<double> b(x.begin() + static_cast<std::ptrdiff_t>(x.size() / 2), x.end());
     const MeanError ma = block_average(a), mb = block_average(b);
     const bool drift = x.size() >= 64 && std::abs(ma.mean - mb.mean) > 3.0 * std::hypot(ma.error, mb.error);
-    return nlohmann::json{{"mean", m.mean}, {"error", m.error}, {"samples", m.samples}, {"blocks", m.blocks}, {"drifting", drift}};
+    return nlohmann::json{{"mean", m.mean},
+                          {"error", m.error},
+                          {"error_blocking", m.error_blocking},
+                          {"error_autocorrelation", m.error_autocorrelation},
+                          {"tau_int_samples", m.tau_int},
+                          {"samples", m.samples},
+                          {"blocks", m.blocks},
+                          {"drifting", drift}};
   };
   js["packing_fraction"] = stats(column("packing_fraction", 0));
   bool nematic = false;
@@ -202,6 +215,16 @@ void McRunner::summarise_phase(const McPhase& phase, std::int64_t first_step) {
       std::fprintf(stderr, "anisodyn-mc: WARNING: phase '%s' expected after %s phase '%s', but the order parameters say '%s'\n",
                    phase.expect_phase.c_str(), type_name(phase.type), phase.label.c_str(), js["phase"].get<std::string>().c_str());
     }
+  }
+  if (!quiet_) {
+    std::string line = "mc " + std::string(type_name(phase.type)) + " " + phase.label + ": eta = " +
+                       format_mean_error(js["packing_fraction"]);
+    if (js.contains("order"))
+      for (const auto& [name, axes] : js["order"].items())
+        line += "; " + name + " U_T, U_W, U_L = " + format_mean_error(axes["T"]) + ", " + format_mean_error(axes["W"]) + ", " +
+                format_mean_error(axes["L"]) + " (random-orientation baseline " + std::to_string(axes["isotropic_baseline"].get<double>()).substr(0, 5) + ")";
+    if (js.contains("phase")) line += " -> " + js["phase"].get<std::string>();
+    std::fprintf(stderr, "%s\n", line.c_str());
   }
   const MoveSizes& m = engine_.move_sizes();
   js["move_sizes"] = {{"translate", m.translate}, {"rotate", m.rotate}, {"log_volume", m.log_volume}};
