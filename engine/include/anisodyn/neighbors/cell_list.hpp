@@ -37,6 +37,13 @@ class SpeciesGrid {
   bool visit(const Box& box, const Vec3& r, double rc, F&& f) const;
 
   const Int3& cells_per_axis() const { return n_; }
+
+ private:
+  /// Fallback of visit() when the reach wraps a whole axis (small boxes): every cell, minimum image.
+  template <class F>
+  bool visit_all_cells(const Box& box, const Vec3& r, double rc, F&& f) const;
+
+ public:
   std::size_t capacity() const { return capacity_; }
 
  private:
@@ -84,33 +91,43 @@ class CellList {
 
 template <class F>
 bool SpeciesGrid::visit(const Box& box, const Vec3& r, double rc, F&& f) const {
-  // Per axis, the cells within reach; a reach that wraps the whole axis visits each cell once.
-  int first[3], span[3];
+  // Per axis, the cells within reach. When no axis is wrapped whole (the usual case) each visited
+  // cell has one periodic image next to r, so the separation is p + shift − r with no rounding;
+  // otherwise every cell is visited once and the minimum image is taken per candidate.
+  constexpr int kMaxSpan = 16;
+  int cells[3][kMaxSpan];
+  double shift[3][kMaxSpan];
+  int span[3];
+  bool wraps = false;
+  const Vec3& L = box.edges();
   for (int k = 0; k < 3; ++k) {
     const int reach = static_cast<int>(std::ceil(rc * inv_h_[k]));
     const int c = std::min(static_cast<int>(r[k] * inv_h_[k]), n_[k] - 1);
-    if (2 * reach + 1 >= n_[k]) {
-      first[k] = 0;
-      span[k] = n_[k];
-    } else {
-      first[k] = c - reach + n_[k];  // kept positive for the modulo below
-      span[k] = 2 * reach + 1;
+    span[k] = 2 * reach + 1;
+    if (span[k] >= n_[k] || span[k] > kMaxSpan) {
+      wraps = true;
+      break;
+    }
+    for (int a = 0; a < span[k]; ++a) {
+      const int cc = c - reach + a;
+      cells[k][a] = cc < 0 ? cc + n_[k] : (cc >= n_[k] ? cc - n_[k] : cc);
+      shift[k][a] = cc < 0 ? -L[k] : (cc >= n_[k] ? L[k] : 0.0);
     }
   }
+  if (wraps) return visit_all_cells(box, r, rc, std::forward<F>(f));
   const double rc2 = rc * rc;
-  const Vec3& L = box.edges();
-  const Vec3& invL = box.inverse_edges();
   if (r2_scratch_.size() < capacity_) r2_scratch_.resize(capacity_);
   double* r2 = r2_scratch_.data();
   for (int a = 0; a < span[0]; ++a) {
-    const int cx = (first[0] + a) % n_[0];
+    const double qx = r.x() - shift[0][a];
     for (int b = 0; b < span[1]; ++b) {
-      const int cy = (first[1] + b) % n_[1];
+      const double qy = r.y() - shift[1][b];
+      const int row = (cells[0][a] * n_[1] + cells[1][b]) * n_[2];
       for (int c = 0; c < span[2]; ++c) {
-        const int cz = (first[2] + c) % n_[2];
-        const int cell = (cx * n_[1] + cy) * n_[2] + cz;
+        const int cell = row + cells[2][c];
         const int m = count_[cell];
         if (m == 0) continue;
+        const double qz = r.z() - shift[2][c];
         const std::size_t base = static_cast<std::size_t>(cell) * capacity_;
         const double* px = sx_.data() + base;
         const double* py = sy_.data() + base;
@@ -118,19 +135,45 @@ bool SpeciesGrid::visit(const Box& box, const Vec3& r, double rc, F&& f) const {
         // Distance pass without branches so it vectorises; hits are handled afterwards.
 #pragma omp simd
         for (int s = 0; s < m; ++s) {
-          double dx = px[s] - r.x(), dy = py[s] - r.y(), dz = pz[s] - r.z();
-          dx -= L.x() * std::nearbyint(dx * invL.x());
-          dy -= L.y() * std::nearbyint(dy * invL.y());
-          dz -= L.z() * std::nearbyint(dz * invL.z());
+          const double dx = px[s] - qx, dy = py[s] - qy, dz = pz[s] - qz;
           r2[s] = dx * dx + dy * dy + dz * dz;
         }
         for (int s = 0; s < m; ++s) {
           if (r2[s] > rc2) continue;
-          Vec3 d(px[s] - r.x(), py[s] - r.y(), pz[s] - r.z());
-          d = box.min_image(d);
-          if (f(sid_[base + s], d, r2[s])) return true;
+          if (f(sid_[base + s], Vec3(px[s] - qx, py[s] - qy, pz[s] - qz), r2[s])) return true;
         }
       }
+    }
+  }
+  return false;
+}
+
+template <class F>
+bool SpeciesGrid::visit_all_cells(const Box& box, const Vec3& r, double rc, F&& f) const {
+  const double rc2 = rc * rc;
+  const Vec3& L = box.edges();
+  const Vec3& invL = box.inverse_edges();
+  if (r2_scratch_.size() < capacity_) r2_scratch_.resize(capacity_);
+  double* r2 = r2_scratch_.data();
+  const int cells = n_.prod();
+  for (int cell = 0; cell < cells; ++cell) {
+    const int m = count_[cell];
+    if (m == 0) continue;
+    const std::size_t base = static_cast<std::size_t>(cell) * capacity_;
+    const double* px = sx_.data() + base;
+    const double* py = sy_.data() + base;
+    const double* pz = sz_.data() + base;
+#pragma omp simd
+    for (int s = 0; s < m; ++s) {
+      double dx = px[s] - r.x(), dy = py[s] - r.y(), dz = pz[s] - r.z();
+      dx -= L.x() * std::nearbyint(dx * invL.x());
+      dy -= L.y() * std::nearbyint(dy * invL.y());
+      dz -= L.z() * std::nearbyint(dz * invL.z());
+      r2[s] = dx * dx + dy * dy + dz * dz;
+    }
+    for (int s = 0; s < m; ++s) {
+      if (r2[s] > rc2) continue;
+      if (f(sid_[base + s], box.min_image(Vec3(px[s] - r.x(), py[s] - r.y(), pz[s] - r.z())), r2[s])) return true;
     }
   }
   return false;
