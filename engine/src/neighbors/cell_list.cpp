@@ -8,6 +8,25 @@ namespace {
 constexpr double kMaxCellsPerParticle = 2.0;
 }  // namespace
 
+const std::vector<StencilCell>& stencil_order(int sx, int sy, int sz) {
+  // One cached order per thread; queries of one grid almost always share the same spans.
+  thread_local int key[3] = {-1, -1, -1};
+  thread_local std::vector<StencilCell> order;
+  if (key[0] == sx && key[1] == sy && key[2] == sz) return order;
+  key[0] = sx; key[1] = sy; key[2] = sz;
+  order.clear();
+  for (int a = 0; a < sx; ++a)
+    for (int b = 0; b < sy; ++b)
+      for (int c = 0; c < sz; ++c)
+        order.push_back({static_cast<std::int8_t>(a), static_cast<std::int8_t>(b), static_cast<std::int8_t>(c)});
+  auto d2 = [&](const StencilCell& s) {
+    const int da = 2 * s.a - (sx - 1), db = 2 * s.b - (sy - 1), dc = 2 * s.c - (sz - 1);
+    return da * da + db * db + dc * dc;
+  };
+  std::stable_sort(order.begin(), order.end(), [&](const StencilCell& x, const StencilCell& y) { return d2(x) < d2(y); });
+  return order;
+}
+
 void SpeciesGrid::configure(const Box& box, double self_cutoff, std::size_t count) {
   const Vec3& L = box.edges();
   double h = std::max(self_cutoff, 1e-12);

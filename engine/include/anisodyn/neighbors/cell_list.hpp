@@ -20,6 +20,13 @@
 
 namespace anisodyn {
 
+/// Cells of an (sx × sy × sz) stencil as index triples, ordered by distance from its centre.
+/// The reference is to a per-thread cache: a visit callback must not start another visit.
+struct StencilCell {
+  std::int8_t a, b, c;
+};
+const std::vector<StencilCell>& stencil_order(int sx, int sy, int sz);
+
 class SpeciesGrid {
  public:
   /// Chooses the grid for `count` particles whose largest mutual cut-off is `self_cutoff`.
@@ -118,31 +125,26 @@ bool SpeciesGrid::visit(const Box& box, const Vec3& r, double rc, F&& f) const {
   const double rc2 = rc * rc;
   if (r2_scratch_.size() < capacity_) r2_scratch_.resize(capacity_);
   double* r2 = r2_scratch_.data();
-  for (int a = 0; a < span[0]; ++a) {
-    const double qx = r.x() - shift[0][a];
-    for (int b = 0; b < span[1]; ++b) {
-      const double qy = r.y() - shift[1][b];
-      const int row = (cells[0][a] * n_[1] + cells[1][b]) * n_[2];
-      for (int c = 0; c < span[2]; ++c) {
-        const int cell = row + cells[2][c];
-        const int m = count_[cell];
-        if (m == 0) continue;
-        const double qz = r.z() - shift[2][c];
-        const std::size_t base = static_cast<std::size_t>(cell) * capacity_;
-        const double* px = sx_.data() + base;
-        const double* py = sy_.data() + base;
-        const double* pz = sz_.data() + base;
-        // Distance pass without branches so it vectorises; hits are handled afterwards.
+  // Nearest cells first: most trial moves are rejected, and a rejection ends at the first overlap,
+  // which is usually in the query's own cell or a face neighbour.
+  for (const auto& [a, b, c] : stencil_order(span[0], span[1], span[2])) {
+    const int cell = (cells[0][a] * n_[1] + cells[1][b]) * n_[2] + cells[2][c];
+    const int m = count_[cell];
+    if (m == 0) continue;
+    const double qx = r.x() - shift[0][a], qy = r.y() - shift[1][b], qz = r.z() - shift[2][c];
+    const std::size_t base = static_cast<std::size_t>(cell) * capacity_;
+    const double* px = sx_.data() + base;
+    const double* py = sy_.data() + base;
+    const double* pz = sz_.data() + base;
+    // Distance pass without branches so it vectorises; hits are handled afterwards.
 #pragma omp simd
-        for (int s = 0; s < m; ++s) {
-          const double dx = px[s] - qx, dy = py[s] - qy, dz = pz[s] - qz;
-          r2[s] = dx * dx + dy * dy + dz * dz;
-        }
-        for (int s = 0; s < m; ++s) {
-          if (r2[s] > rc2) continue;
-          if (f(sid_[base + s], Vec3(px[s] - qx, py[s] - qy, pz[s] - qz), r2[s])) return true;
-        }
-      }
+    for (int s = 0; s < m; ++s) {
+      const double dx = px[s] - qx, dy = py[s] - qy, dz = pz[s] - qz;
+      r2[s] = dx * dx + dy * dy + dz * dz;
+    }
+    for (int s = 0; s < m; ++s) {
+      if (r2[s] > rc2) continue;
+      if (f(sid_[base + s], Vec3(px[s] - qx, py[s] - qy, pz[s] - qz), r2[s])) return true;
     }
   }
   return false;
