@@ -94,6 +94,21 @@ bool HardOverlap::overlaps(std::int32_t i, const Vec3& r, const Mat3& rot) const
   return false;
 }
 
+int HardOverlap::count_overlaps(std::int32_t i, const Vec3& r, const Mat3& rot) const {
+  const auto& species = state_->species;
+  const int a = state_->particles.species[static_cast<std::size_t>(i)];
+  const Shape& sa = species[static_cast<std::size_t>(a)].shape;
+  int count = 0;
+  for (int b = 0; b < nspecies_; ++b) {
+    const Shape& sb = species[static_cast<std::size_t>(b)].shape;
+    cells_.visit(b, r, cutoff(a, b), [&](std::int32_t j, const Vec3& d, double) {
+      count += j != i && overlap(sa, rot, sb, rot_[static_cast<std::size_t>(j)], d);
+      return false;
+    });
+  }
+  return count;
+}
+
 void HardOverlap::moved(std::int32_t i, const Vec3& r, const Mat3& rot) {
   rot_[static_cast<std::size_t>(i)] = rot;
   cells_.move(i, r);

@@ -91,7 +91,7 @@ void McEngine::particle_move() {
     Int3 image = p.image(ui);
     state_.box.wrap(r, image);
     counters_.translate_tried[static_cast<std::size_t>(s)]++;
-    if (overlap_.overlaps(i, r, rot)) return;
+    if (blocked(i, r, rot, p.position(ui), rot)) return;
     p.set_position(ui, r);
     p.set_image(ui, image);
     overlap_.moved(i, r, rot);
@@ -110,10 +110,27 @@ void McEngine::particle_move() {
     if (dU > 0.0 && rng_.uniform() >= std::exp(-dU)) return;
   }
   const Vec3 r = p.position(ui);
-  if (overlap_.overlaps(i, r, new_rot)) return;
+  if (blocked(i, r, new_rot, r, rot)) return;
   p.set_orientation(ui, q);
   overlap_.moved(i, r, new_rot);
   counters_.rotate_accepted[static_cast<std::size_t>(s)]++;
+}
+
+bool McEngine::blocked(std::int32_t i, const Vec3& r_new, const Mat3& rot_new, const Vec3& r_old, const Mat3& rot_old) const {
+  if (!removing_overlaps_) return overlap_.overlaps(i, r_new, rot_new);
+  // A clean particle stays clean; an overlapping one may only move if that lowers its count.
+  // (Allowing equal counts lets it wander deeper into its partner, and removal then stalls.)
+  const int before = overlap_.count_overlaps(i, r_old, rot_old);
+  if (before == 0) return overlap_.overlaps(i, r_new, rot_new);
+  return overlap_.count_overlaps(i, r_new, rot_new) >= before;
+}
+
+void McEngine::rescale_allowing_overlaps(double volume) {
+  const Vec3 old_edges = state_.box.edges();
+  const Vec3 new_edges = old_edges * std::cbrt(volume / state_.box.volume());
+  rescale_positions(new_edges.cwiseQuotient(old_edges));
+  state_.box.set_edges(new_edges);
+  overlap_.rebuild(state_);
 }
 
 void McEngine::rescale_positions(const Vec3& factor) {

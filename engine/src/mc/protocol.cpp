@@ -8,6 +8,7 @@
 #include "anisodyn/core/progress.hpp"
 #include "anisodyn/core/signals.hpp"
 #include "anisodyn/core/statistics.hpp"
+#include "anisodyn/interactions/hard_overlap.hpp"
 #include "anisodyn/system/order.hpp"
 
 namespace anisodyn {
@@ -91,6 +92,7 @@ void McRunner::one_cycle(const McPhase& phase, std::int64_t checkpoint_every, co
   }
   if (cursor_.total_cycles % protocol_.sample_every == 0) sample();
   if (protocol_.frame_every > 0 && cursor_.total_cycles % protocol_.frame_every == 0) frames_.push_back(state_);
+  if (overlaps_present_) return;  // a checkpoint must hold a valid configuration: wait for it
   if (interrupt_requested()) {
     checkpoint();
     throw Interrupted("checkpoint written at cycle " + std::to_string(cursor_.total_cycles) + "; run again to resume");
@@ -109,7 +111,43 @@ void McRunner::run_fixed_phase(const McPhase& phase, std::int64_t checkpoint_eve
   progress.finish(phase_detail(state_, engine_));
 }
 
+void McRunner::run_quick_compress(const McPhase& phase, std::int64_t checkpoint_every, const std::function<void()>& checkpoint) {
+  const double target_volume = state_.packing_fraction() * state_.box.volume() / phase.target_packing_fraction;
+  const double reach = largest_pair_cutoff(state_.species);
+  if ((state_.box.edges() * std::cbrt(target_volume / state_.box.volume())).minCoeff() < 2.0 * reach)
+    throw RuntimeFailure("packing fraction " + std::to_string(phase.target_packing_fraction) +
+                         " needs a box smaller than twice the largest cut-off (minimum image): use more particles");
+  engine_.set_pressure(std::nullopt);
+  if (cursor_.quick_step <= 0.0) cursor_.quick_step = phase.quick_step;
+  Progress progress("mc quick compress to eta=" + std::to_string(phase.target_packing_fraction), phase.max_cycles, quiet_);
+  while (state_.box.volume() > target_volume * (1.0 + 1e-12)) {
+    engine_.rescale_allowing_overlaps(std::max(target_volume, state_.box.volume() * (1.0 - cursor_.quick_step)));
+    engine_.set_overlap_removal(true);
+    overlaps_present_ = true;
+    std::int64_t sweeps = 0;
+    while (engine_.overlap().first_overlap()) {
+      one_cycle(phase, checkpoint_every, checkpoint);
+      ++sweeps;
+      if (cursor_.cycle_in_phase >= phase.max_cycles)
+        throw RuntimeFailure("quick compression did not reach packing fraction " + std::to_string(phase.target_packing_fraction) +
+                             " within " + std::to_string(phase.max_cycles) + " cycles (reached " + std::to_string(state_.packing_fraction()) + ")");
+    }
+    overlaps_present_ = false;
+    engine_.set_overlap_removal(false);
+    // Removal leaves particles just touching; ordinary sweeps reopen the gaps before the next
+    // shrink (without them each shrink creates more overlaps and the compression stalls). The
+    // configuration is valid again, so these cycles also honour interrupts and checkpoints.
+    for (std::int64_t k = 0; k < phase.squeeze_sweeps; ++k) one_cycle(phase, checkpoint_every, checkpoint);
+    // Adapt the step: a few sweeps per shrink keeps the particles close to a relaxed packing.
+    if (sweeps <= 3) cursor_.quick_step = std::min(0.05, 1.5 * cursor_.quick_step);
+    else if (sweeps > 20) cursor_.quick_step = std::max(1e-4, 0.7 * cursor_.quick_step);
+    progress.update(cursor_.cycle_in_phase, phase_detail(state_, engine_) + " step=" + std::to_string(cursor_.quick_step));
+  }
+  progress.finish(phase_detail(state_, engine_));
+}
+
 void McRunner::run_compress_phase(const McPhase& phase, std::int64_t checkpoint_every, const std::function<void()>& checkpoint) {
+  if (phase.method == "quick") return run_quick_compress(phase, checkpoint_every, checkpoint);
   const double target = phase.target_packing_fraction;
   const double target_volume = state_.packing_fraction() * state_.box.volume() / target;
   Progress progress("mc compress to eta=" + std::to_string(target), phase.max_cycles, quiet_);
@@ -242,6 +280,7 @@ void McRunner::run(std::int64_t checkpoint_every, const std::function<void()>& c
     cursor_.cycle_in_phase = 0;
     cursor_.compress_pressure = 0.0;
     cursor_.squeezing = false;
+    cursor_.quick_step = 0.0;
   }
   if (frames_.empty() || frames_.back().step != state_.step) frames_.push_back(state_);
   summary_["total_cycles"] = cursor_.total_cycles;
@@ -274,7 +313,8 @@ nlohmann::json McRunner::checkpoint_state() const {
   const RngState& r = engine_.rng_state();
   const MoveSizes& m = engine_.move_sizes();
   return {{"cursor", {{"phase", cursor_.phase}, {"cycle_in_phase", cursor_.cycle_in_phase}, {"total_cycles", cursor_.total_cycles},
-                      {"compress_pressure", cursor_.compress_pressure}, {"squeezing", cursor_.squeezing}}},
+                      {"compress_pressure", cursor_.compress_pressure}, {"squeezing", cursor_.squeezing},
+                      {"quick_step", cursor_.quick_step}}},
           {"rng", {{"seed", r.seed}, {"stream", r.stream}, {"counter", r.counter}, {"used", r.used}}},
           {"counters", counters_to_json(engine_.counters())},
           {"tune_mark", counters_to_json(tune_mark_)},
@@ -290,6 +330,7 @@ void McRunner::restore(const nlohmann::json& js, std::map<std::string, Series> o
   cursor_.total_cycles = c.at("total_cycles").get<std::int64_t>();
   cursor_.compress_pressure = c.at("compress_pressure").get<double>();
   cursor_.squeezing = c.at("squeezing").get<bool>();
+  cursor_.quick_step = c.at("quick_step").get<double>();
   const auto& r = js.at("rng");
   RngState rng{r.at("seed").get<std::uint64_t>(), r.at("stream").get<std::uint64_t>(), r.at("counter").get<std::uint64_t>(),
                r.at("used").get<std::uint32_t>()};

@@ -26,6 +26,9 @@ McPhase parse_phase(io::ConfigNode n, std::size_t index) {
     p.plateau_tolerance = n.non_negative("plateau_tolerance", 0.005);
     p.box_moves = parse_box_moves(n);
     p.tune = n.boolean("tune", true);
+    p.method = n.choice("method", {"npt", "quick"}, "npt");
+    p.quick_step = n.positive("quick_step", 0.005);
+    if (p.quick_step >= 0.5) n.fail("quick_step", "expected a relative volume step below 0.5");
   } else if (type == "npt") {
     p.type = McPhase::Type::Npt;
     p.pressure = n.positive("pressure");

@@ -27,6 +27,8 @@ class HardOverlap {
   void inserted(std::int32_t i);
   /// Whether particle i placed at r (wrapped) with rotation matrix rot overlaps any other particle.
   bool overlaps(std::int32_t i, const Vec3& r, const Mat3& rot) const;
+  /// Number of particles that particle i, placed at r with rotation rot, overlaps (full scan).
+  int count_overlaps(std::int32_t i, const Vec3& r, const Mat3& rot) const;
   /// Records an accepted move of particle i.
   void moved(std::int32_t i, const Vec3& r, const Mat3& rot);
   /// First overlapping pair (i < j) of the configuration, if any.

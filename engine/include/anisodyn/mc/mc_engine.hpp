@@ -52,6 +52,13 @@ class McEngine {
   /// Affine isotropic rescaling of the box to `volume`, accepted only if it creates no overlap.
   bool try_rescale(double volume);
 
+  /// Quick compression (preparation only, not an equilibrium sampler): rescales the box even if
+  /// particles then overlap ...
+  void rescale_allowing_overlaps(double volume);
+  /// ... and, while on, lets a particle with overlaps move only if that lowers its number of
+  /// overlaps (a clean particle only to a clean place), so sweeps remove the overlaps.
+  void set_overlap_removal(bool on) { removing_overlaps_ = on; }
+
   MoveSizes& move_sizes() { return moves_; }
   const MoveSizes& move_sizes() const { return moves_; }
   /// Restores what a checkpoint saved, so the run continues bit-for-bit.
@@ -68,12 +75,15 @@ class McEngine {
   void volume_move();
   bool any_overlap_after_rescale(const Vec3& new_edges);
   void rescale_positions(const Vec3& factor);
+  /// Whether the hard cores forbid moving particle i from (r_old, rot_old) to (r_new, rot_new).
+  bool blocked(std::int32_t i, const Vec3& r_new, const Mat3& rot_new, const Vec3& r_old, const Mat3& rot_old) const;
 
   State& state_;
   Rng rng_;
   HardOverlap overlap_;
   OrientationalField field_;
   std::optional<double> beta_pressure_;
+  bool removing_overlaps_ = false;
   BoxMoves box_moves_ = BoxMoves::Isotropic;
   MoveSizes moves_;
   MoveCounters counters_;

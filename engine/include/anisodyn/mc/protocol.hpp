@@ -40,6 +40,9 @@ struct McPhase {
   double squeeze_window = 0.02;    // the ramp stops once η ≥ target·(1 − window); squeezes do the rest
   double plateau_tolerance = 0.005;  // βP grows only while a step raises η by less than this fraction
   std::string expect_phase;  // "", "isotropic" or "nematic": checked at the end of the phase
+  // compress with method "quick": shrink by quick_step (relative volume), remove overlaps, repeat
+  std::string method = "npt";
+  double quick_step = 0.005;
 };
 
 struct McProtocol {
@@ -68,6 +71,7 @@ struct McCursor {
   std::int64_t total_cycles = 0;
   double compress_pressure = 0.0;   // current βP of a compress phase (0 = not started)
   bool squeezing = false;           // compress: pressure ramp done, squeezing to the exact target
+  double quick_step = 0.0;          // quick compress: current relative volume step (0 = not started)
 };
 
 class McRunner {
@@ -89,6 +93,7 @@ class McRunner {
  private:
   void run_fixed_phase(const McPhase& phase, std::int64_t checkpoint_every, const std::function<void()>& checkpoint);
   void run_compress_phase(const McPhase& phase, std::int64_t checkpoint_every, const std::function<void()>& checkpoint);
+  void run_quick_compress(const McPhase& phase, std::int64_t checkpoint_every, const std::function<void()>& checkpoint);
   void one_cycle(const McPhase& phase, std::int64_t checkpoint_every, const std::function<void()>& checkpoint);
   void sample();
   void summarise_phase(const McPhase& phase, std::int64_t first_step);
@@ -99,6 +104,7 @@ class McRunner {
   McEngine engine_;
   bool quiet_;
   McCursor cursor_;
+  bool overlaps_present_ = false;  // quick compression: checkpoints wait until the overlaps are gone
   MoveCounters tune_mark_, sample_mark_;
   std::map<std::string, Series> observables_;
   std::vector<State> frames_;
