@@ -120,7 +120,5 @@ ts = u.trajectory[-1]
 check(np.allclose(ts.positions, pos[-1], rtol=1e-6, atol=1e-5), "last frame via random access differs")
 u.trajectory.close()
 
-if failures:
-    print(f"{len(failures)} check(s) failed")
-    sys.exit(1)
+assert not failures, f"{len(failures)} check(s) failed: " + "; ".join(failures[:5])
 print(f"OK: MDAnalysis {mda.__version__} read {n_frames} frames of {n_atoms} particles")

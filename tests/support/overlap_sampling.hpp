@@ -229,23 +229,24 @@ inline RandomPairStats run_random_pairs(PairFamily family, std::int64_t n, std::
   return st;
 }
 
-/// The assertions shared by the fast (10^6) and slow (10^7) random-pair tests.
-inline void check_random_pairs(PairFamily family, std::int64_t pairs, std::uint64_t seed) {
+/// The checks shared by the fast (10^6) and slow (10^7) random-pair tests; use as
+/// EXPECT_TRUE(random_pairs_agree(...)).
+inline ::testing::AssertionResult random_pairs_agree(PairFamily family, std::int64_t pairs, std::uint64_t seed) {
   const RandomPairStats st = run_random_pairs(family, pairs, seed);
-  EXPECT_EQ(st.pairs, pairs);
-  EXPECT_EQ(st.disagreements, 0) << family_name(family);
-  EXPECT_EQ(st.dispatcher_mismatches, 0) << family_name(family);
-  // Indeterminate pairs (within the reference band of contact) are counted, never dropped silently.
-  EXPECT_LT(double(st.indeterminate), 1e-4 * double(pairs)) << family_name(family);
-  // The sample must really probe both verdicts and the contact region.
   const double f_overlap = double(st.overlapping) / double(st.pairs);
   const double f_near = double(st.near_contact) / double(st.pairs);
-  EXPECT_GT(f_overlap, 0.2);
-  EXPECT_LT(f_overlap, 0.8);
-  EXPECT_NEAR(f_near, 0.5, 0.01);
-  if (family == PairFamily::CuboidSphere) {
-    EXPECT_LT(st.max_dmin2_error, 1e-13);
-  }
+  auto failure = [&](const std::string& what) { return ::testing::AssertionFailure() << family_name(family) << ": " << what; };
+  if (st.pairs != pairs) return failure("ran " + std::to_string(st.pairs) + " pairs");
+  if (st.disagreements != 0) return failure(std::to_string(st.disagreements) + " disagreements with the reference");
+  if (st.dispatcher_mismatches != 0) return failure(std::to_string(st.dispatcher_mismatches) + " dispatcher mismatches");
+  // Indeterminate pairs (within the reference band of contact) are counted, never dropped silently.
+  if (double(st.indeterminate) >= 1e-4 * double(pairs)) return failure(std::to_string(st.indeterminate) + " undecidable pairs");
+  // The sample must really probe both verdicts and the contact region.
+  if (f_overlap <= 0.2 || f_overlap >= 0.8) return failure("overlapping fraction " + std::to_string(f_overlap));
+  if (std::abs(f_near - 0.5) > 0.01) return failure("near-contact fraction " + std::to_string(f_near));
+  if (family == PairFamily::CuboidSphere && st.max_dmin2_error >= 1e-13)
+    return failure("d_min^2 error " + std::to_string(st.max_dmin2_error));
+  return ::testing::AssertionSuccess();
 }
 
 }  // namespace anisodyn::testing_support
