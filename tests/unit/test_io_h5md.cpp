@@ -1,6 +1,7 @@
 // io: H5MD round trips (bit-for-bit), observables, checkpoints and error reporting for bad files.
 #include <gtest/gtest.h>
 
+#include "input_error.hpp"
 #include "scratch_dir.hpp"
 #include <hdf5.h>
 
@@ -104,16 +105,7 @@ void expect_same_state(const State& a, const State& b) {
   }
 }
 
-template <class F>
-InputError input_error(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "expected an InputError";
-  return InputError("none");
-}
+using anisodyn::testing_support::input_error;
 
 /// Deletes an HDF5 link in a finished file (to fabricate damaged inputs).
 void delete_link(const std::string& path, const std::string& link) {

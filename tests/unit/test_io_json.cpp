@@ -1,6 +1,7 @@
 // io: JSON configuration loading, --set overrides and ConfigNode's typed, path-naming access.
 #include <gtest/gtest.h>
 
+#include "input_error.hpp"
 #include "scratch_dir.hpp"
 
 #include <stdlib.h>
@@ -30,17 +31,7 @@ class JsonFiles : public anisodyn::testing_support::ScratchDirTest {
   std::string dir_;
 };
 
-/// Runs f, expects an InputError, returns it.
-template <class F>
-InputError input_error(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "expected an InputError";
-  return InputError("none");
-}
+using anisodyn::testing_support::input_error;
 
 bool contains(const std::string& haystack, const std::string& needle) {
   return haystack.find(needle) != std::string::npos;

@@ -28,10 +28,10 @@ HardOverlap::HardOverlap(const State& state, const std::vector<std::size_t>& exp
                                             "–" + shape_kind_name(sb.kind));
       cutoff_[static_cast<std::size_t>(a * nspecies_ + b)] = sa.circumradius() + sb.circumradius();
     }
+  largest_cutoff_ = largest_pair_cutoff(species);
   rebuild(state);
 }
 
-double HardOverlap::max_cutoff() const { return cutoff_.empty() ? 0.0 : *std::max_element(cutoff_.begin(), cutoff_.end()); }
 
 void HardOverlap::rebuild(const State& state) {
   state_ = &state;
@@ -51,7 +51,8 @@ void HardOverlap::inserted(std::int32_t i) {
   cells_.insert(i, p.species[ui], p.position(ui));
 }
 
-bool HardOverlap::overlaps(std::int32_t i, const Vec3& r, const Mat3& rot) const {
+template <class F>
+bool HardOverlap::for_each_overlap(std::int32_t i, const Vec3& r, const Mat3& rot, std::int32_t first_j, F&& on_overlap) const {
   const auto& species = state_->species;
   const int a = state_->particles.species[static_cast<std::size_t>(i)];
   const Shape& sa = species[static_cast<std::size_t>(a)].shape;
@@ -61,19 +62,21 @@ bool HardOverlap::overlaps(std::int32_t i, const Vec3& r, const Mat3& rot) const
     // The common pairs get their kernel inlined into the candidate loop; every other registered
     // pair goes through the generic dispatcher.
     auto scan = [&](auto&& kernel) {
-      return cells_.visit(b, r, rc, [&](std::int32_t j, const Vec3& d, double r2) { return j != i && kernel(j, d, r2); });
+      return cells_.visit(b, r, rc, [&](std::int32_t j, const Vec3& d, double r2) {
+        return j != i && j >= first_j && kernel(j, d, r2) && on_overlap(j);
+      });
     };
-    bool hit;
+    bool stopped;
     if (sa.kind == ShapeKind::Sphere && sb.kind == ShapeKind::Sphere) {
       // The cut-off is the contact distance and the cell list keeps r² ≤ rc²: every candidate overlaps.
-      hit = scan([](std::int32_t, const Vec3&, double) { return true; });
+      stopped = scan([](std::int32_t, const Vec3&, double) { return true; });
     } else if (sa.kind == ShapeKind::Cuboid && sb.kind == ShapeKind::Cuboid) {
       const Vec3 ha = sa.half_extents(), hb = sb.half_extents();
       // Cheap exclusion before the 15-axis test: B lies inside its circumsphere, so if B's centre
       // is farther from box A than B's circumradius they cannot touch (and vice versa). Each check
       // is one OCSI distance (9 multiply-adds); the margin keeps round-off from excluding contact.
       const double ra2 = (1.0 + 1e-12) * ha.squaredNorm(), rb2 = (1.0 + 1e-12) * hb.squaredNorm();
-      hit = scan([&](std::int32_t j, const Vec3& d, double) {
+      stopped = scan([&](std::int32_t j, const Vec3& d, double) {
         const Mat3& rj = rot_[static_cast<std::size_t>(j)];
         if (cuboid_sphere_dmin2(rot, ha, d) > rb2 || cuboid_sphere_dmin2(rj, hb, Vec3(-d)) > ra2) return false;
         return overlap_cuboid_cuboid(ha, rot, hb, rj, d);
@@ -81,31 +84,26 @@ bool HardOverlap::overlaps(std::int32_t i, const Vec3& r, const Mat3& rot) const
     } else if (sa.kind == ShapeKind::Cuboid && sb.kind == ShapeKind::Sphere) {
       const Vec3 ha = sa.half_extents();
       const double rb = 0.5 * sb.diameter;
-      hit = scan([&](std::int32_t, const Vec3& d, double) { return overlap_cuboid_sphere(rot, ha, d, rb); });
+      stopped = scan([&](std::int32_t, const Vec3& d, double) { return overlap_cuboid_sphere(rot, ha, d, rb); });
     } else if (sa.kind == ShapeKind::Sphere && sb.kind == ShapeKind::Cuboid) {
       const Vec3 hb = sb.half_extents();
       const double ra = 0.5 * sa.diameter;
-      hit = scan([&](std::int32_t j, const Vec3& d, double) { return overlap_cuboid_sphere(rot_[static_cast<std::size_t>(j)], hb, Vec3(-d), ra); });
+      stopped = scan([&](std::int32_t j, const Vec3& d, double) { return overlap_cuboid_sphere(rot_[static_cast<std::size_t>(j)], hb, Vec3(-d), ra); });
     } else {
-      hit = scan([&](std::int32_t j, const Vec3& d, double) { return overlap(sa, rot, sb, rot_[static_cast<std::size_t>(j)], d); });
+      stopped = scan([&](std::int32_t j, const Vec3& d, double) { return overlap(sa, rot, sb, rot_[static_cast<std::size_t>(j)], d); });
     }
-    if (hit) return true;
+    if (stopped) return true;
   }
   return false;
 }
 
+bool HardOverlap::overlaps(std::int32_t i, const Vec3& r, const Mat3& rot) const {
+  return for_each_overlap(i, r, rot, 0, [](std::int32_t) { return true; });
+}
+
 int HardOverlap::count_overlaps(std::int32_t i, const Vec3& r, const Mat3& rot) const {
-  const auto& species = state_->species;
-  const int a = state_->particles.species[static_cast<std::size_t>(i)];
-  const Shape& sa = species[static_cast<std::size_t>(a)].shape;
   int count = 0;
-  for (int b = 0; b < nspecies_; ++b) {
-    const Shape& sb = species[static_cast<std::size_t>(b)].shape;
-    cells_.visit(b, r, cutoff(a, b), [&](std::int32_t j, const Vec3& d, double) {
-      count += j != i && overlap(sa, rot, sb, rot_[static_cast<std::size_t>(j)], d);
-      return false;
-    });
-  }
+  for_each_overlap(i, r, rot, 0, [&](std::int32_t) { ++count; return false; });
   return count;
 }
 
@@ -116,20 +114,12 @@ void HardOverlap::moved(std::int32_t i, const Vec3& r, const Mat3& rot) {
 
 std::optional<std::pair<std::int32_t, std::int32_t>> HardOverlap::first_overlap() const {
   const Particles& p = state_->particles;
-  const auto& species = state_->species;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const int a = p.species[i];
-    const Shape& sa = species[static_cast<std::size_t>(a)].shape;
+  for (std::size_t ui = 0; ui < p.size(); ++ui) {
+    const std::int32_t i = static_cast<std::int32_t>(ui);
     std::int32_t partner = -1;
-    for (int b = 0; b < nspecies_ && partner < 0; ++b) {
-      const Shape& sb = species[static_cast<std::size_t>(b)].shape;
-      cells_.visit(b, p.position(i), cutoff(a, b), [&](std::int32_t j, const Vec3& d, double) {
-        if (j <= static_cast<std::int32_t>(i) || !overlap(sa, rot_[i], sb, rot_[static_cast<std::size_t>(j)], d)) return false;
-        partner = j;
-        return true;
-      });
-    }
-    if (partner >= 0) return std::make_pair(static_cast<std::int32_t>(i), partner);
+    // Each pair once: only partners with a larger index.
+    for_each_overlap(i, p.position(ui), rot_[ui], i + 1, [&](std::int32_t j) { partner = j; return true; });
+    if (partner >= 0) return std::make_pair(i, partner);
   }
   return std::nullopt;
 }

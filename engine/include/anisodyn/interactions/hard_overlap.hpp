@@ -37,10 +37,16 @@ class HardOverlap {
   const Mat3& rotation(std::int32_t i) const { return rot_[static_cast<std::size_t>(i)]; }
   double cutoff(int a, int b) const { return cutoff_[static_cast<std::size_t>(a * nspecies_ + b)]; }
   /// Largest pair cut-off: minimum image needs every box edge ≥ twice this.
-  double max_cutoff() const;
+  double max_cutoff() const { return largest_cutoff_; }
 
  private:
+  /// Calls on_overlap(j) for each particle j ≠ i, j ≥ first_j, that particle i placed at (r, rot)
+  /// overlaps, until on_overlap returns true; returns whether it stopped early.
+  template <class F>
+  bool for_each_overlap(std::int32_t i, const Vec3& r, const Mat3& rot, std::int32_t first_j, F&& on_overlap) const;
+
   const State* state_;
+  double largest_cutoff_ = 0.0;
   int nspecies_ = 0;
   std::vector<double> cutoff_;
   std::vector<Mat3> rot_;

@@ -49,6 +49,10 @@ class SpeciesGrid {
   /// Fallback of visit() when the reach wraps a whole axis (small boxes): every cell, minimum image.
   template <class F>
   bool visit_all_cells(const Box& box, const Vec3& r, double rc, F&& f) const;
+  /// Calls f for the particles of one cell within √rc2 of q: separations p − q as they stand, or
+  /// minimum-imaged in min_image_box when it is given.
+  template <class F>
+  [[gnu::always_inline]] bool scan_cell(int cell, const Vec3& q, double rc2, const Box* min_image_box, F& f) const;
 
  public:
   std::size_t capacity() const { return capacity_; }
@@ -122,61 +126,57 @@ bool SpeciesGrid::visit(const Box& box, const Vec3& r, double rc, F&& f) const {
     }
   }
   if (wraps) return visit_all_cells(box, r, rc, std::forward<F>(f));
-  const double rc2 = rc * rc;
-  if (r2_scratch_.size() < capacity_) r2_scratch_.resize(capacity_);
-  double* r2 = r2_scratch_.data();
   // Nearest cells first: most trial moves are rejected, and a rejection ends at the first overlap,
   // which is usually in the query's own cell or a face neighbour.
   for (const auto& [a, b, c] : stencil_order(span[0], span[1], span[2])) {
     const int cell = (cells[0][a] * n_[1] + cells[1][b]) * n_[2] + cells[2][c];
-    const int m = count_[cell];
-    if (m == 0) continue;
-    const double qx = r.x() - shift[0][a], qy = r.y() - shift[1][b], qz = r.z() - shift[2][c];
-    const std::size_t base = static_cast<std::size_t>(cell) * capacity_;
-    const double* px = sx_.data() + base;
-    const double* py = sy_.data() + base;
-    const double* pz = sz_.data() + base;
-    // Distance pass without branches so it vectorises; hits are handled afterwards.
-#pragma omp simd
-    for (int s = 0; s < m; ++s) {
-      const double dx = px[s] - qx, dy = py[s] - qy, dz = pz[s] - qz;
-      r2[s] = dx * dx + dy * dy + dz * dz;
-    }
-    for (int s = 0; s < m; ++s) {
-      if (r2[s] > rc2) continue;
-      if (f(sid_[base + s], Vec3(px[s] - qx, py[s] - qy, pz[s] - qz), r2[s])) return true;
-    }
+    const Vec3 q(r.x() - shift[0][a], r.y() - shift[1][b], r.z() - shift[2][c]);
+    if (scan_cell(cell, q, rc * rc, nullptr, f)) return true;
   }
   return false;
 }
 
 template <class F>
 bool SpeciesGrid::visit_all_cells(const Box& box, const Vec3& r, double rc, F&& f) const {
-  const double rc2 = rc * rc;
-  const Vec3& L = box.edges();
-  const Vec3& invL = box.inverse_edges();
-  if (r2_scratch_.size() < capacity_) r2_scratch_.resize(capacity_);
-  double* r2 = r2_scratch_.data();
   const int cells = n_.prod();
-  for (int cell = 0; cell < cells; ++cell) {
-    const int m = count_[cell];
-    if (m == 0) continue;
-    const std::size_t base = static_cast<std::size_t>(cell) * capacity_;
-    const double* px = sx_.data() + base;
-    const double* py = sy_.data() + base;
-    const double* pz = sz_.data() + base;
+  for (int cell = 0; cell < cells; ++cell)
+    if (scan_cell(cell, r, rc * rc, &box, f)) return true;
+  return false;
+}
+
+template <class F>
+[[gnu::always_inline]] inline bool SpeciesGrid::scan_cell(int cell, const Vec3& q, double rc2, const Box* min_image_box, F& f) const {
+  const int m = count_[cell];
+  if (m == 0) return false;
+  double* r2 = r2_scratch_.data();
+  const std::size_t base = static_cast<std::size_t>(cell) * capacity_;
+  const double* px = sx_.data() + base;
+  const double* py = sy_.data() + base;
+  const double* pz = sz_.data() + base;
+  // Distance pass without branches so it vectorises; hits are handled afterwards.
+  if (min_image_box == nullptr) {
 #pragma omp simd
     for (int s = 0; s < m; ++s) {
-      double dx = px[s] - r.x(), dy = py[s] - r.y(), dz = pz[s] - r.z();
+      const double dx = px[s] - q.x(), dy = py[s] - q.y(), dz = pz[s] - q.z();
+      r2[s] = dx * dx + dy * dy + dz * dz;
+    }
+  } else {
+    const Vec3& L = min_image_box->edges();
+    const Vec3& invL = min_image_box->inverse_edges();
+#pragma omp simd
+    for (int s = 0; s < m; ++s) {
+      double dx = px[s] - q.x(), dy = py[s] - q.y(), dz = pz[s] - q.z();
       dx -= L.x() * std::nearbyint(dx * invL.x());
       dy -= L.y() * std::nearbyint(dy * invL.y());
       dz -= L.z() * std::nearbyint(dz * invL.z());
       r2[s] = dx * dx + dy * dy + dz * dz;
     }
-    for (int s = 0; s < m; ++s) {
-      if (r2[s] > rc2) continue;
-      if (f(sid_[base + s], box.min_image(Vec3(px[s] - r.x(), py[s] - r.y(), pz[s] - r.z())), r2[s])) return true;
-    }
+  }
+  for (int s = 0; s < m; ++s) {
+    if (r2[s] > rc2) continue;
+    Vec3 d(px[s] - q.x(), py[s] - q.y(), pz[s] - q.z());
+    if (min_image_box != nullptr) d = min_image_box->min_image(d);
+    if (f(sid_[base + s], d, r2[s])) return true;
   }
   return false;
 }
