@@ -6,13 +6,7 @@
 // (default: ./bench-cache) so repeated runs time only the production loop.
 #include <benchmark/benchmark.h>
 
-#include <cstdio>
-#include <filesystem>
-#include <memory>
-
-#include "anisodyn/config/builder.hpp"
-#include "anisodyn/io/h5md.hpp"
-#include "anisodyn/mc/protocol.hpp"
+#include "support/prepared_state.hpp"
 
 using namespace anisodyn;
 
@@ -23,45 +17,9 @@ struct Prepared {
   MoveSizes moves;
 };
 
-State lattice_at(const Species& sp, std::size_t n, double eta) {
-  State s;
-  s.species.push_back(sp);
-  s.box = Box(box_edges_for_packing_fraction(s.species, {n}, eta, Vec3::Ones()));
-  PlacementRequest req;
-  req.counts = {n};
-  OrientationRule rule;
-  rule.body_axis = default_alignment_axis(sp.shape);
-  rule.random_azimuth = true;
-  req.rules = {rule};
-  Rng rng(1, 1);
-  place_on_lattice(s, req, rng);
-  return s;
-}
-
 Prepared prepare(const std::string& name, const Species& sp, std::size_t n, double eta, std::int64_t melt_cycles) {
-  const std::string dir = std::getenv("ANISODYN_BENCH_CACHE") ? std::getenv("ANISODYN_BENCH_CACHE") : "bench-cache";
-  std::filesystem::create_directories(dir);
-  const std::string path = dir + "/" + name + ".h5";
   Prepared p;
-  if (std::filesystem::exists(path)) {
-    io::H5mdReader r(path);
-    p.state = r.read_frame(-1);
-  } else {
-    // Lattice at the target density, melted by NVT (isotropic fluids at these densities).
-    p.state = lattice_at(sp, n, eta);
-    McProtocol proto;
-    McPhase melt;
-    melt.type = McPhase::Type::Nvt;
-    melt.cycles = melt_cycles;
-    melt.tune = true;
-    proto.phases = {melt};
-    McRunner runner(p.state, proto, false);
-    runner.run(0, [] {});
-    std::fprintf(stderr, "prepared %s: %s\n", name.c_str(), runner.summary()["phases"][0].dump().c_str());
-    io::H5mdWriter w(path, {"anisodyn", "", "bench", nlohmann::json::object(), nlohmann::json::object(), p.state.species});
-    w.append_frame(p.state);
-    w.commit();
-  }
+  p.state = bench::cached_melted_lattice(name, sp, n, eta, melt_cycles);
   // Tune to 35% on the cached state (not timed).
   McEngine mc(p.state, RngState{7, 0, 0, 4});
   for (int round = 0; round < 30; ++round) {

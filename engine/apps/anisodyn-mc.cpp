@@ -52,10 +52,7 @@ int main(int argc, char** argv) {
                           "Configuration keys: seed, target_acceptance, tune_every, sample_every, frame_every, field "
                           "{strength, axis, direction}, phases[] (compress | npt | nvt). See docs/mc.md."};
   return io::run_tool(argc, argv, info, [&](io::CommonOptions& opt) {
-    if (opt.inputs.size() != 1) throw InputError("command line", "--input", "exactly one input state (H5MD)");
-    if (opt.output.empty()) throw InputError("command line", "--output", "an output file");
-    io::check_output_writable(opt.output);
-    const std::string& input = opt.inputs[0];
+    const std::string& input = io::require_one_input_and_output(opt);
 
     io::ConfigNode cfg(opt.config, opt.config_name());
     McProtocol protocol = parse_mc_protocol(cfg);
@@ -75,11 +72,7 @@ int main(int argc, char** argv) {
                                                          "different parameters: delete it to start afresh");
     }
 
-    const double reach = largest_pair_cutoff(state.species);
-    if (state.box.shortest_edge() < 2.0 * reach)
-      throw InputError(input, "/particles/all/box", "box edges of at least " + std::to_string(2.0 * reach) +
-                                                        " (twice the largest cut-off) for the minimum image; shortest is " +
-                                                        std::to_string(state.box.shortest_edge()));
+    require_minimum_image(state, input);
 
     std::unique_ptr<McRunner> runner;
     try {

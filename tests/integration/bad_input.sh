@@ -3,8 +3,8 @@
 # naming the cause, and leave no output file (nor a .partial) behind.
 set -uo pipefail
 bin=$1; tmp=$2
+source "$(dirname "${BASH_SOURCE[0]}")/expect_bad.sh"
 rm -rf "$tmp"; mkdir -p "$tmp"; cd "$tmp"
-failures=0; passed=0
 
 good_config='{"seed": 3, "species": [{"name": "hs", "shape": {"type": "sphere", "diameter": 1}}],
   "composition": [{"species": "hs", "count": 64}], "box": {"packing_fraction": 0.1}}'
@@ -13,16 +13,6 @@ echo "$good_config" > good_config.json
 echo "$good_mc" > good_mc.json
 "$bin/anisodyn-config" -q --config good_config.json --output state.h5 || { echo "setup failed"; exit 1; }
 
-# expect_bad NAME PATTERN OUTPUT -- command...
-expect_bad() {
-  local name=$1 pattern=$2 out=$3; shift 4
-  local err rc
-  err=$("$@" 2>&1 >/dev/null); rc=$?
-  if [[ $rc -ne 2 ]]; then echo "FAIL $name: exit code $rc, expected 2 ($err)"; failures=$((failures+1)); return; fi
-  if ! grep -qiE "$pattern" <<<"$err"; then echo "FAIL $name: message '$err' does not match /$pattern/"; failures=$((failures+1)); return; fi
-  if [[ -e "$out" || -e "$out.partial" ]]; then echo "FAIL $name: output $out was left behind"; failures=$((failures+1)); return; fi
-  echo "ok   $name: $err"; passed=$((passed+1))
-}
 
 echo '{"species": [ {"name": "hs", ' > malformed.json
 expect_bad "malformed JSON" "malformed.json.*line" out1.h5 -- "$bin/anisodyn-config" --config malformed.json --output out1.h5

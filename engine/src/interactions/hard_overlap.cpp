@@ -8,6 +8,14 @@
 
 namespace anisodyn {
 
+void require_minimum_image(const State& state, const std::string& file) {
+  const double reach = largest_pair_cutoff(state.species);
+  if (state.box.shortest_edge() < 2.0 * reach)
+    throw InputError(file, "/particles/all/box", "box edges of at least " + std::to_string(2.0 * reach) +
+                                                     " (twice the largest cut-off) for the minimum image; shortest is " +
+                                                     std::to_string(state.box.shortest_edge()));
+}
+
 double largest_pair_cutoff(const SpeciesTable& species) {
   double r = 0.0;
   for (const auto& s : species) r = std::max(r, s.shape.circumradius());

@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "anisodyn/core/error.hpp"
+#include "anisodyn/io/atomic_file.hpp"
 #include "anisodyn/io/json_config.hpp"
 #include "anisodyn/version.hpp"
 
@@ -20,7 +21,7 @@ std::optional<CommonOptions> parse_command_line(int argc, char** argv, const Too
   for (int i = 0; i < argc; ++i) opt.argv.emplace_back(argv[i]);
 
   po::options_description desc("Options");
-  std::uint64_t seed = 0;
+  std::uint64_t seed = 0, replica = 0;
   std::int64_t checkpoint_every = 0;
   desc.add_options()
       ("help,h", "show this help and exit")
@@ -30,6 +31,7 @@ std::optional<CommonOptions> parse_command_line(int argc, char** argv, const Too
       ("input,i", po::value<std::vector<std::string>>(&opt.inputs)->composing(), "input file (repeatable)")
       ("output,o", po::value<std::string>(&opt.output), "output file")
       ("seed", po::value<std::uint64_t>(&seed), "random seed (overrides the configuration's seed)")
+      ("replica", po::value<std::uint64_t>(&replica), "replica index K: an independent random stream derived from (seed, K)")
       ("threads", po::value<int>(&opt.threads)->default_value(1), "OpenMP threads")
       ("checkpoint-every", po::value<std::int64_t>(&checkpoint_every), "cycles between checkpoints")
       ("quiet,q", po::bool_switch(&opt.quiet), "no progress output");
@@ -50,6 +52,7 @@ std::optional<CommonOptions> parse_command_line(int argc, char** argv, const Too
     return std::nullopt;
   }
   if (vm.count("seed")) opt.seed = seed;
+  if (vm.count("replica")) opt.replica = replica;
   if (vm.count("checkpoint-every")) {
     if (checkpoint_every <= 0) throw InputError("command line", "--checkpoint-every", "expected a positive number of cycles");
     opt.checkpoint_every = checkpoint_every;
@@ -59,6 +62,13 @@ std::optional<CommonOptions> parse_command_line(int argc, char** argv, const Too
   if (!opt.config_path.empty()) opt.config = load_json_file(opt.config_path);
   for (const auto& assignment : opt.overrides) apply_override(opt.config, assignment);
   return opt;
+}
+
+const std::string& require_one_input_and_output(const CommonOptions& opt) {
+  if (opt.inputs.size() != 1) throw InputError("command line", "--input", "exactly one input state (H5MD)");
+  if (opt.output.empty()) throw InputError("command line", "--output", "an output file");
+  check_output_writable(opt.output);
+  return opt.inputs[0];
 }
 
 int run_tool(int argc, char** argv, const ToolInfo& info, const std::function<void(CommonOptions&)>& body) {

@@ -498,6 +498,8 @@ struct H5mdWriter::Impl {
   std::int64_t last_step = 0;
   Handle step_ds, time_ds;
   Handle edges_value, position_value, image_value, orientation_value, species_value, id_value;
+  struct Extra { Handle value; std::size_t width = 1; };
+  std::map<std::string, Extra> extra;  // engine-specific per-particle elements
 
   struct Observable {
     Handle group, step, time, value;
@@ -651,6 +653,7 @@ struct H5mdWriter::Impl {
   /// Closes every handle, then the file; afterwards the writer accepts no more calls.
   void close_file() {
     observables.clear();
+    extra.clear();
     for (Handle* h : {&step_ds, &time_ds, &edges_value, &position_value, &image_value, &orientation_value,
                       &species_value, &id_value, &engine_state, &checkpoint_group, &anisodyn_group,
                       &observables_group, &parameters, &box, &all, &particles, &h5md}) {
@@ -708,7 +711,9 @@ const std::string& H5mdWriter::path() const { return impl_->path; }
 const std::string& H5mdWriter::partial_path() const { return impl_->out.partial_path(); }
 std::size_t H5mdWriter::frame_count() const { return impl_->frames; }
 
-void H5mdWriter::append_frame(const State& s) {
+void H5mdWriter::append_frame(const State& s) { append_frame(s, {}); }
+
+void H5mdWriter::append_frame(const State& s, const std::vector<ParticleElement>& extra) {
   QuietHdf5 quiet;
   Impl& m = *impl_;
   m.require_open();
@@ -717,6 +722,10 @@ void H5mdWriter::append_frame(const State& s) {
   if (!m.species_written) m.write_species_table(s.species);
   if (!m.frames_initialized) {
     m.initialize_frames(n);
+    for (const auto& e : extra) {
+      if (!valid_name(e.name) || e.width == 0) throw RuntimeFailure("H5mdWriter: invalid particle element '" + e.name + "'");
+      m.extra[e.name] = Impl::Extra{m.element(m.all.get(), e.name, H5T_IEEE_F64LE, {static_cast<hsize_t>(n), e.width}, 8), e.width};
+    }
   } else {
     if (n != m.n)
       throw RuntimeFailure("H5mdWriter: frame at step " + std::to_string(s.step) + " has " + std::to_string(n) +
@@ -772,6 +781,14 @@ void H5mdWriter::append_frame(const State& s) {
   w.append(m.orientation_value.get(), {nh, 4}, f, 1, H5T_NATIVE_DOUBLE, buf.data(), "/particles/all/orientation/value");
   w.append(m.species_value.get(), {nh}, f, 1, H5T_NATIVE_INT32, p.species.data(), "/particles/all/species/value");
   w.append(m.id_value.get(), {nh}, f, 1, H5T_NATIVE_INT64, p.id.data(), "/particles/all/id/value");
+  if (extra.size() != m.extra.size())
+    throw RuntimeFailure("H5mdWriter: every frame must carry the same per-particle elements as the first");
+  for (const auto& e : extra) {
+    auto it = m.extra.find(e.name);
+    if (it == m.extra.end() || it->second.width != e.width)
+      throw RuntimeFailure("H5mdWriter: particle element '" + e.name + "' does not match the first frame's elements");
+    w.append(it->second.value.get(), {nh, e.width}, f, 1, H5T_NATIVE_DOUBLE, e.data, "/particles/all/" + e.name + "/value");
+  }
 
   m.frames += 1;
   m.last_step = s.step;
@@ -864,6 +881,33 @@ hsize_t rows_up_to(const std::vector<std::int64_t>& steps, std::int64_t last_ste
 }
 }  // namespace
 
+/// Adds the names of the links in an HDF5 group to `names`.
+static void insert_link_names(hid_t group, std::set<std::string>& names) {
+  H5Literate(
+      group, H5_INDEX_NAME, H5_ITER_INC, nullptr,
+      [](hid_t, const char* name, const H5L_info_t*, void* data) -> herr_t {
+        static_cast<std::set<std::string>*>(data)->insert(name);
+        return 0;
+      },
+      &names);
+}
+
+/// Groups of /particles/all other than the standard H5MD elements that hold a `value` dataset.
+static std::vector<std::string> extra_element_names(const FileReader& r) {
+  const std::string all = std::string("/particles/") + kParticleGroup;
+  Handle g = r.group(all);
+  std::set<std::string> names;
+  insert_link_names(g.get(), names);
+  std::vector<std::string> out;
+  for (const auto& name : names) {
+    if (name == "box" || name == "position" || name == "image" || name == "orientation" || name == "species" ||
+        name == "id" || name == "velocity" || name == "force")
+      continue;
+    if (r.exists(all + "/" + name + "/value")) out.push_back(name);
+  }
+  return out;
+}
+
 H5mdWriter H5mdWriter::resume(const std::string& path, std::int64_t last_step) {
   QuietHdf5 quiet;
   auto impl = std::make_unique<Impl>(path);  // checks that the directory is writable
@@ -919,6 +963,17 @@ H5mdWriter H5mdWriter::resume(const std::string& path, std::int64_t last_step) {
                            " frames of " + std::to_string(m.n) + " particles");
       m.w.check_rc(H5Dset_extent(e.handle->get(), want.data()), "truncate " + e.hpath);
     }
+    for (const auto& name : extra_element_names(r)) {
+      Impl::Extra e;
+      const std::string hpath = all + "/" + name + "/value";
+      e.value = r.dataset(hpath);
+      const auto ed = dataset_dims(e.value.get());
+      if (ed.size() != 3 || ed[0] < keep || ed[1] != nh) r.bad(hpath, "damaged partial output: shape " + dims_text(ed));
+      e.width = ed[2];
+      const std::vector<hsize_t> want{keep, nh, ed[2]};
+      m.w.check_rc(H5Dset_extent(e.value.get(), want.data()), "truncate " + hpath);
+      m.extra.emplace(name, std::move(e));
+    }
     m.frames = keep;
     m.last_step = keep > 0 ? steps[keep - 1] : 0;
     m.frames_initialized = true;
@@ -927,13 +982,7 @@ H5mdWriter H5mdWriter::resume(const std::string& path, std::int64_t last_step) {
   if (r.exists("/observables")) {
     m.observables_group = r.group("/observables");
     std::set<std::string> names;
-    H5Literate(
-        m.observables_group.get(), H5_INDEX_NAME, H5_ITER_INC, nullptr,
-        [](hid_t, const char* name, const H5L_info_t*, void* data) -> herr_t {
-          static_cast<std::set<std::string>*>(data)->insert(name);
-          return 0;
-        },
-        &names);
+    insert_link_names(m.observables_group.get(), names);
     for (const auto& name : names) {
       const std::string base = "/observables/" + name;
       Impl::Observable o;
@@ -1146,6 +1195,28 @@ State H5mdReader::read_frame(std::ptrdiff_t index) const {
   return s;
 }
 
+std::vector<std::string> H5mdReader::particle_element_names() const {
+  QuietHdf5 quiet;
+  return extra_element_names(*impl_);
+}
+
+std::vector<double> H5mdReader::read_particle_element(const std::string& name, std::ptrdiff_t index, std::size_t& width) const {
+  QuietHdf5 quiet;
+  const Impl& m = *impl_;
+  const std::string hpath = std::string("/particles/") + kParticleGroup + "/" + name + "/value";
+  if (!m.exists(hpath)) m.bad(hpath, "missing per-particle element '" + name + "'");
+  Handle ds = m.dataset(hpath);
+  const auto d = dataset_dims(ds.get());
+  if (d.size() != 3) m.bad(hpath, "expected shape [frames, N, width], got " + dims_text(d));
+  width = d[2];
+  const auto f = static_cast<std::ptrdiff_t>(d[0]);
+  const std::ptrdiff_t idx = index < 0 ? f + index : index;
+  if (idx < 0 || idx >= f) m.bad(hpath, "frame " + std::to_string(index) + " is out of range");
+  std::vector<double> out(m.n * width);
+  m.read_particle_row(name, static_cast<std::size_t>(idx), width, H5T_NATIVE_DOUBLE, out.data());
+  return out;
+}
+
 bool H5mdReader::has_observable(const std::string& name) const {
   QuietHdf5 quiet;
   return !impl_->observable_path(name).empty();
@@ -1158,13 +1229,7 @@ std::vector<std::string> H5mdReader::observable_names() const {
   for (const std::string base : {"/observables", "/anisodyn/observables"}) {
     if (!m.exists(base)) continue;
     Handle g = m.group(base);
-    H5Literate(
-        g.get(), H5_INDEX_NAME, H5_ITER_INC, nullptr,
-        [](hid_t, const char* name, const H5L_info_t*, void* data) -> herr_t {
-          static_cast<std::set<std::string>*>(data)->insert(name);
-          return 0;
-        },
-        &names);
+    insert_link_names(g.get(), names);
   }
   return {names.begin(), names.end()};
 }

@@ -3,6 +3,7 @@
 // per-species-pair cut-offs (sum of circumradii). Contact counts as overlap (spec 10 §1.4).
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -14,6 +15,10 @@ namespace anisodyn {
 
 /// Largest centre distance at which any two particles of these species can touch.
 double largest_pair_cutoff(const SpeciesTable& species);
+
+/// InputError(file, "/particles/all/box", …) unless every box edge is at least twice the largest
+/// pair cut-off, which the minimum-image convention needs.
+void require_minimum_image(const State& state, const std::string& file);
 
 class HardOverlap {
  public:

@@ -25,6 +25,7 @@ struct CommonOptions {
   std::vector<std::string> inputs;     // --input (repeatable)
   std::string output;                  // --output
   std::optional<std::uint64_t> seed;   // --seed
+  std::optional<std::uint64_t> replica;  // --replica K (tools with random streams: stream K of the seed)
   int threads = 1;                     // --threads
   std::optional<std::int64_t> checkpoint_every;  // --checkpoint-every (cycles)
   bool quiet = false;
@@ -37,6 +38,10 @@ struct CommonOptions {
 /// Parses the command line, loads --config and applies --set. Returns nullopt after --help or
 /// --version (already printed). Throws InputError on bad options.
 std::optional<CommonOptions> parse_command_line(int argc, char** argv, const ToolInfo& info);
+
+/// For tools that turn one input state into one output file: checks that there is exactly one
+/// --input and a writable --output (InputError otherwise) and returns the input path.
+const std::string& require_one_input_and_output(const CommonOptions& opt);
 
 /// Runs body with parsed options; returns the exit code (prints errors as "<tool>: error: ...").
 int run_tool(int argc, char** argv, const ToolInfo& info, const std::function<void(CommonOptions&)>& body);

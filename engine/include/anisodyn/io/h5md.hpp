@@ -10,6 +10,8 @@
 //   /particles/all/orientation     {step, time, value [F,N,4]}  unit quaternion (w, x, y, z), body → lab
 //   /particles/all/species         {step, time, value [F,N]}    int32 index into /parameters/species
 //   /particles/all/id              {step, time, value [F,N]}    int64
+//   /particles/all/<extra>         {step, time, value [F,N,W]}  float64, engine-specific per-particle
+//                                  data (e.g. DMC rotation vectors), see ParticleElement
 //   /observables/<name>            {step, time, value [R] or [R,W]}
 //   /parameters/config             JSON text: the stage's full parameters
 //   /parameters/provenance         JSON text (io/provenance.hpp)
@@ -47,6 +49,13 @@ struct H5mdHeader {
   std::size_t frames_per_chunk = 0;  // HDF5 chunking of frame data; 0 = automatic (~128 KiB chunks)
 };
 
+/// Engine-specific per-particle data stored with a frame as /particles/all/<name>, value [F, N, width].
+struct ParticleElement {
+  std::string name;
+  std::size_t width = 1;
+  const double* data = nullptr;  // N × width values, row-major
+};
+
 /// Writes an H5MD file to <path>.partial through AtomicOutput; nothing appears at <path> before
 /// commit(). Destroying the writer without commit() removes the partial file. The constructor
 /// throws InputError (exit 2) for an unusable output path; HDF5 failures while writing and
@@ -63,6 +72,8 @@ class H5mdWriter {
   /// images, orientations (w, x, y, z), species and ids. The particle count is fixed by the first
   /// frame; steps must not decrease.
   void append_frame(const State& s);
+  /// The same, plus extra per-particle elements; every frame must carry the same set of elements.
+  void append_frame(const State& s, const std::vector<ParticleElement>& extra);
   std::size_t frame_count() const;
 
   /// Scalar time series /observables/<name>; rows are buffered and flushed in blocks.
@@ -112,6 +123,10 @@ class H5mdReader {
   /// (positions, images, orientations, species, ids), step and time.
   State read_frame(std::ptrdiff_t index) const;
   std::vector<std::int64_t> frame_steps() const;
+  /// Names of the extra per-particle elements (see ParticleElement).
+  std::vector<std::string> particle_element_names() const;
+  /// Row of an extra element at a frame: N × width values (width returned in `width`).
+  std::vector<double> read_particle_element(const std::string& name, std::ptrdiff_t index, std::size_t& width) const;
   std::vector<double> frame_times() const;
   SpeciesTable species() const;
 

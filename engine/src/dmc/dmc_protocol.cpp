@@ -1,0 +1,242 @@
+#include "anisodyn/dmc/dmc_protocol.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <set>
+
+#include "anisodyn/core/error.hpp"
+
+namespace anisodyn {
+
+namespace {
+
+std::string format_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+int parse_axis_letter(io::ConfigNode& node, const std::string& key, const std::string& letters, int fallback) {
+  if (!node.has(key)) return fallback;
+  const std::string v = node.string(key);
+  const auto pos = letters.find(v);
+  if (v.size() != 1 || pos == std::string::npos)
+    node.fail(key, std::string("expected one of ") + letters[0] + ", " + letters[1] + ", " + letters[2]);
+  return static_cast<int>(pos);
+}
+
+DmcMoveOptions parse_moves(std::optional<io::ConfigNode> node) {
+  DmcMoveOptions m;
+  if (!node) return m;
+  m.rotation = node->choice("rotation", {"exponential", "sequential"}, "exponential") == "sequential"
+                   ? RotationComposition::Sequential : RotationComposition::ExponentialMap;
+  m.frame = node->choice("translation_frame", {"midpoint", "old"}, "midpoint") == "old" ? TranslationFrame::Old
+                                                                                         : TranslationFrame::Midpoint;
+  const std::string order = node->string("sequential_order", "TLW");
+  std::set<char> seen(order.begin(), order.end());
+  if (order.size() != 3 || seen != std::set<char>{'L', 'T', 'W'})
+    node->fail("sequential_order", "expected the three body axes T, W, L in some order, e.g. \"TLW\"");
+  for (int k = 0; k < 3; ++k) m.sequential_order[static_cast<std::size_t>(k)] = static_cast<int>(std::string("TWL").find(order[static_cast<std::size_t>(k)]));
+  return m;
+}
+
+FieldSegment parse_segment(io::ConfigNode& seg) {
+  FieldSegment s;
+  s.field_on = seg.choice("field", {"on", "off"}) == "on";
+  if (seg.has("cycles") == seg.has("time")) seg.fail("", "expected exactly one of 'cycles' or 'time' (Brownian time) for the segment's length");
+  if (seg.has("cycles")) {
+    s.unit = FieldSegment::Unit::Cycles;
+    s.length = static_cast<double>(seg.positive_integer("cycles"));
+  } else {
+    s.unit = FieldSegment::Unit::Time;
+    s.length = seg.positive("time");
+  }
+  return s;
+}
+
+/// `switches` (absolute instants, strictly increasing, one unit) → segments; the run's end comes
+/// from `cycles` or `time` at the top level.
+std::vector<FieldSegment> parse_switches(io::ConfigNode& schedule, bool initially_on, const FieldSegment& end) {
+  std::vector<FieldSegment> out;
+  bool on = initially_on;
+  double last = 0.0;
+  std::optional<FieldSegment::Unit> unit;
+  auto nodes = schedule.objects("switches");
+  for (std::size_t k = 0; k < nodes.size(); ++k) {
+    auto& sw = nodes[k];
+    if (sw.has("cycle") == sw.has("time")) sw.fail("", "expected exactly one of 'cycle' or 'time' (the switch instant)");
+    const FieldSegment::Unit u = sw.has("cycle") ? FieldSegment::Unit::Cycles : FieldSegment::Unit::Time;
+    const double at = sw.has("cycle") ? static_cast<double>(sw.positive_integer("cycle")) : sw.positive("time");
+    if (unit && *unit != u) sw.fail("", "expected every switch in the same unit (all 'cycle' or all 'time')");
+    unit = u;
+    if (at <= last) sw.fail(sw.has("cycle") ? "cycle" : "time", "expected switch instants in increasing order (after " + format_number(last) + ")");
+    const bool next = sw.choice("field", {"on", "off"}) == "on";
+    out.push_back(FieldSegment{on, u, true, at});
+    on = next;
+    last = at;
+  }
+  if (unit && end.unit == *unit && end.length <= last)
+    schedule.fail("switches", "expected every switch before the end of the run (" + format_number(end.length) + ")");
+  FieldSegment tail = end;
+  tail.field_on = on;
+  tail.absolute = true;
+  out.push_back(tail);
+  return out;
+}
+
+void parse_field(io::ConfigNode& cfg, DmcProtocol& p, bool& initially_on) {
+  initially_on = false;
+  auto field = cfg.optional_object("field");
+  if (!field) return;
+  const Vec3 dir = field->vec3("direction", Vec3::UnitX());
+  if (!(dir.norm() > 0.0)) field->fail("direction", "expected a non-zero vector");
+  p.field.direction = dir.normalized();
+  initially_on = field->choice("initially", {"on", "off"}, "off") == "on";
+  p.check_field_direction = field->boolean("check_direction", true);
+  if (auto o = field->optional_object("orientational")) {
+    p.field.strength = o->positive("strength");
+    p.field.body_axis = parse_axis_letter(*o, "axis", "TWL", 1);
+  }
+  if (auto d = field->optional_object("dipoles")) {
+    p.dipole_gamma = d->positive("gamma");
+    p.dipole_species = d->strings("species");
+    if (p.dipole_species.empty()) d->fail("species", "expected at least one species name");
+    p.ewald_accuracy = d->positive("accuracy", 1e-5);
+    if (p.ewald_accuracy >= 0.1) d->fail("accuracy", "expected a relative accuracy below 0.1 (default 1e-5)");
+    p.ewald_minimum_image_only = d->boolean("minimum_image_only", false);
+  }
+}
+
+}  // namespace
+
+DmcProtocol parse_dmc_protocol(io::ConfigNode& cfg) {
+  DmcProtocol p;
+  p.seed = static_cast<std::uint64_t>(cfg.non_negative_integer("seed", 1));
+  p.moves = parse_moves(cfg.optional_object("moves"));
+
+  auto steps = cfg.object("time_step");
+  for (const auto& [name, value] : steps.raw().items()) {
+    if (!name.empty() && name[0] == '_') continue;
+    p.time_steps[name] = steps.positive(name);
+  }
+  if (p.time_steps.empty()) cfg.fail("time_step", "expected δt_MC for at least one species, e.g. {\"board\": 0.01}");
+
+  if (auto b = cfg.optional_object("balance")) {
+    const std::string mode = b->choice("mode", {"equilibrium", "per_cycle", "none"}, "equilibrium");
+    p.balance = mode == "per_cycle" ? BalanceMode::PerCycle : mode == "none" ? BalanceMode::None : BalanceMode::Equilibrium;
+    p.reference = b->string("reference", "");
+    p.clock = b->string("clock", "");
+    p.preliminary_cycles = b->non_negative_integer("preliminary_cycles", 10000);
+    p.preliminary_iterations = static_cast<int>(b->positive_integer("max_iterations", 3));
+    p.preliminary_tolerance = b->positive("tolerance", 1e-3);
+    p.smoothing_cycles = b->number("smoothing_cycles", 10.0);
+    if (p.smoothing_cycles < 1.0) b->fail("smoothing_cycles", "expected a number of cycles ≥ 1");
+  }
+
+  bool initially_on = false;
+  parse_field(cfg, p, initially_on);
+
+  // Run length: `cycles` or `time`, or the schedule's segments.
+  auto schedule = cfg.optional_object("schedule");
+  const bool has_segments = schedule && schedule->has("segments");
+  if (has_segments) {
+    if (cfg.has("cycles") || cfg.has("time"))
+      cfg.fail(cfg.has("cycles") ? "cycles" : "time", "expected no run length when schedule.segments gives it");
+    const std::int64_t repeat = schedule->positive_integer("repeat", 1);
+    std::vector<FieldSegment> once;
+    for (auto& seg : schedule->objects("segments")) once.push_back(parse_segment(seg));
+    if (once.empty()) schedule->fail("segments", "expected at least one segment");
+    for (std::int64_t r = 0; r < repeat; ++r) p.segments.insert(p.segments.end(), once.begin(), once.end());
+    if (schedule->has("switches")) schedule->fail("switches", "expected either 'segments' or 'switches', not both");
+  } else {
+    if (cfg.has("cycles") == cfg.has("time"))
+      cfg.fail("cycles", "expected exactly one run length: 'cycles' or 'time' (Brownian time, τ)");
+    FieldSegment end;
+    if (cfg.has("cycles")) end = FieldSegment{initially_on, FieldSegment::Unit::Cycles, true, static_cast<double>(cfg.positive_integer("cycles"))};
+    else end = FieldSegment{initially_on, FieldSegment::Unit::Time, true, cfg.positive("time")};
+    if (schedule && schedule->has("switches")) p.segments = parse_switches(*schedule, initially_on, end);
+    else p.segments = {end};
+  }
+  for (const auto& s : p.segments)
+    if (s.field_on && p.field.strength == 0.0 && p.dipole_gamma == 0.0)
+      cfg.fail("field", "expected an orientational field or dipoles, since the schedule switches the field on");
+
+  if (auto t = cfg.optional_object("tracer")) {
+    TracerSettings ts;
+    ts.species = t->string("species");
+    ts.peclet = t->number("pe");
+    if (ts.peclet < 0.0) t->fail("pe", "expected a Péclet number ≥ 0");
+    ts.axis = parse_axis_letter(*t, "axis", "xyz", 2);
+    if (t->has("a0")) {
+      const auto& v = t->raw().at("a0");
+      if (v.is_number()) {
+        ts.a0 = TracerBathAcceptance::Fixed;
+        ts.a0_value = t->positive("a0");
+        if (ts.a0_value > 1.0) t->fail("a0", "expected a bath acceptance in (0, 1]");
+      } else {
+        ts.a0 = t->choice("a0", {"overlap_pass", "one"}) == "one" ? TracerBathAcceptance::One : TracerBathAcceptance::OverlapPass;
+      }
+    }
+    ts.record_every = t->positive_integer("record_every", 1);
+    p.tracer = ts;
+  }
+
+  if (auto f = cfg.optional_object("frames")) {
+    p.frames.every_cycles = f->non_negative_integer("every_cycles", 0);
+    p.frames.every_time = f->non_negative("every_time", 0.0);
+    if (f->has("log_per_decade") || f->has("log_first_time")) {
+      p.frames.log_per_decade = f->positive("log_per_decade");
+      p.frames.log_first_time = f->positive("log_first_time");
+    }
+    if (auto a = f->optional_object("after_switch")) {
+      p.frames.after_switch_every = a->positive_integer("every_cycles");
+      p.frames.after_switch_for = a->positive_integer("for_cycles");
+    }
+  }
+  p.observe_every = cfg.positive_integer("observe_every", 1);
+
+  if (auto sp = cfg.optional_object("species")) {
+    for (const auto& [name, value] : sp->raw().items()) {
+      if (!name.empty() && name[0] == '_') continue;
+      auto node = sp->object(name);
+      auto& d = p.diffusion[name];
+      if (node.has("D_trans")) d.first = node.vec3("D_trans");
+      if (node.has("D_rot")) d.second = node.vec3("D_rot");
+      for (const auto& v : {d.first, d.second})
+        if (v && v->minCoeff() < 0.0) node.fail(d.first == v ? "D_trans" : "D_rot", "expected non-negative diffusion coefficients (body axes T, W, L)");
+    }
+  }
+  return p;
+}
+
+void check_protocol_species(const DmcProtocol& p, const State& state, const std::string& file) {
+  auto index = [&](const std::string& name) {
+    for (std::size_t s = 0; s < state.species.size(); ++s)
+      if (state.species[s].name == name) return static_cast<int>(s);
+    return -1;
+  };
+  std::string known;
+  for (const auto& s : state.species) known += (known.empty() ? "" : ", ") + s.name;
+  auto require = [&](const std::string& name, const std::string& path) {
+    if (index(name) < 0)
+      throw InputError(file, path, "unknown species '" + name + "': expected one of the input's species (" + known + ")");
+  };
+  for (const auto& [name, dt] : p.time_steps) require(name, "time_step." + name);
+  if (!p.reference.empty()) require(p.reference, "balance.reference");
+  if (!p.clock.empty()) require(p.clock, "balance.clock");
+  for (std::size_t k = 0; k < p.dipole_species.size(); ++k) require(p.dipole_species[k], "field.dipoles.species[" + std::to_string(k) + "]");
+  for (const auto& [name, d] : p.diffusion) require(name, "species." + name);
+  if (p.tracer) {
+    require(p.tracer->species, "tracer.species");
+    const int s = index(p.tracer->species);
+    std::size_t count = 0;
+    for (auto sp : state.particles.species) count += sp == s ? 1 : 0;
+    if (count != 1)
+      throw InputError(file, "tracer.species", "expected a species with exactly one particle (the pulled tracer); '" +
+                                                   p.tracer->species + "' has " + std::to_string(count));
+    if (state.species[static_cast<std::size_t>(s)].shape.is_anisotropic())
+      throw InputError(file, "tracer.species", "expected a sphere: the pulled tracer does not rotate");
+  }
+}
+
+}  // namespace anisodyn

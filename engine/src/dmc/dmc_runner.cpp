@@ -1,0 +1,470 @@
+#include "anisodyn/dmc/dmc_runner.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "anisodyn/core/error.hpp"
+#include "anisodyn/core/progress.hpp"
+#include "anisodyn/core/signals.hpp"
+#include "anisodyn/system/order.hpp"
+
+namespace anisodyn {
+
+namespace {
+const char* kAxisLetters = "TWL";
+
+nlohmann::json counts_json(const std::vector<TrialCounts>& v) {
+  nlohmann::json j = nlohmann::json::array();
+  for (const auto& c : v) j.push_back({c.tried, c.passed, c.accepted});
+  return j;
+}
+
+std::vector<TrialCounts> counts_from_json(const nlohmann::json& j) {
+  std::vector<TrialCounts> v;
+  for (const auto& r : j) v.push_back(TrialCounts{r[0].get<std::int64_t>(), r[1].get<std::int64_t>(), r[2].get<std::int64_t>()});
+  return v;
+}
+
+std::vector<std::size_t> species_counts(const State& s) {
+  std::vector<std::size_t> n(s.species.size(), 0);
+  for (auto sp : s.particles.species) n[static_cast<std::size_t>(sp)]++;
+  return n;
+}
+
+/// Relative validity parameter of the pulled-tracer scheme above which results drift (spec 10 §4.5).
+constexpr double kTracerValidityLimit = 0.2;
+}  // namespace
+
+std::int64_t DmcRunner::species_index(const std::string& name) const {
+  for (std::size_t s = 0; s < state_.species.size(); ++s)
+    if (state_.species[s].name == name) return static_cast<std::int64_t>(s);
+  return -1;
+}
+
+DmcRunner::DmcRunner(State& state, const DmcProtocol& protocol, const std::string& config_file, bool quiet)
+    : state_(state),
+      protocol_(protocol),
+      config_file_(config_file),
+      quiet_(quiet),
+      engine_((check_protocol_species(protocol, state, config_file), state), RngState{protocol.seed, protocol.replica, 0, 4},
+              protocol.moves) {
+  configure_species();
+}
+
+void DmcRunner::configure_species() {
+  const std::size_t ns = state_.species.size();
+  const auto counts = species_counts(state_);
+  summary_["warnings"] = nlohmann::json::array();
+
+  for (const auto& [name, d] : protocol_.diffusion) {
+    Species& sp = state_.species[static_cast<std::size_t>(species_index(name))];
+    if (d.first) sp.D_trans = *d.first;
+    if (d.second) sp.D_rot = *d.second;
+  }
+  for (std::size_t s = 0; s < ns; ++s) {
+    const Species& sp = state_.species[s];
+    if (counts[s] == 0) continue;
+    if (!(sp.D_trans.minCoeff() > 0.0))
+      throw InputError(config_file_, "species." + sp.name + ".D_trans",
+                       "expected positive translational diffusion coefficients for species '" + sp.name +
+                           "' (none in the input's species table): give them here or in the species file");
+    if (sp.shape.is_anisotropic() && !(sp.D_rot.minCoeff() > 0.0))
+      throw InputError(config_file_, "species." + sp.name + ".D_rot",
+                       "expected positive rotational diffusion coefficients for the anisotropic species '" + sp.name + "'");
+  }
+
+  // Tracer, reference and clock.
+  if (protocol_.tracer) {
+    tracer_species_ = static_cast<int>(species_index(protocol_.tracer->species));
+    PulledTracer t;
+    for (std::size_t i = 0; i < state_.particles.size(); ++i)
+      if (state_.particles.species[i] == tracer_species_) t.particle = static_cast<std::int32_t>(i);
+    t.axis = protocol_.tracer->axis;
+    // βF = Pe / a with a the tracer's radius (spec 10 §4.5).
+    t.beta_force = protocol_.tracer->peclet / (0.5 * state_.species[static_cast<std::size_t>(tracer_species_)].shape.diameter);
+    engine_.set_tracer(t);
+  }
+  int reference = 0;
+  if (!protocol_.reference.empty()) reference = static_cast<int>(species_index(protocol_.reference));
+  else if (tracer_species_ >= 0) reference = tracer_species_;
+  else if (protocol_.time_steps.size() == 1) reference = static_cast<int>(species_index(protocol_.time_steps.begin()->first));
+  else if (ns > 1 && protocol_.balance != BalanceMode::None)
+    throw InputError(config_file_, "balance.reference", "expected the reference species whose time step is fixed (several time steps are given)");
+  const std::string& ref_name = state_.species[static_cast<std::size_t>(reference)].name;
+  if (!protocol_.time_steps.count(ref_name))
+    throw InputError(config_file_, "time_step." + ref_name, "expected the time step δt_MC of the reference species '" + ref_name + "'");
+  dt_.assign(ns, protocol_.time_steps.at(ref_name));
+  for (std::size_t s = 0; s < ns; ++s) {
+    const auto it = protocol_.time_steps.find(state_.species[s].name);
+    if (it != protocol_.time_steps.end()) dt_[s] = it->second;
+    else if (protocol_.balance == BalanceMode::None && counts[s] > 0)
+      throw InputError(config_file_, "time_step." + state_.species[s].name,
+                       "expected a time step for every species when balance.mode is \"none\"");
+  }
+  int clock = 0;
+  if (!protocol_.clock.empty()) clock = static_cast<int>(species_index(protocol_.clock));
+  else
+    for (std::size_t s = 0; s < ns; ++s)
+      if (counts[s] > counts[static_cast<std::size_t>(clock)]) clock = static_cast<int>(s);
+
+  TimeBalanceSettings b;
+  b.mode = protocol_.balance;
+  b.reference = reference;
+  b.clock = clock;
+  b.tracer_species = tracer_species_;
+  if (protocol_.tracer) {
+    b.a0 = protocol_.tracer->a0;
+    b.a0_value = protocol_.tracer->a0_value;
+  }
+  b.smoothing_cycles = protocol_.smoothing_cycles;
+  b.species_counts = counts;
+  balance_ = std::make_unique<TimeBalance>(b);
+  engine_.set_time_steps(dt_);
+
+  // Fields.
+  engine_.set_orientational_field(protocol_.field);
+  if (protocol_.dipole_gamma > 0.0) {
+    DipoleSettings d;
+    d.gamma = protocol_.dipole_gamma;
+    d.species_carries.assign(ns, 0);
+    std::size_t n_dipoles = 0;
+    for (const auto& name : protocol_.dipole_species) d.species_carries[static_cast<std::size_t>(species_index(name))] = 1;
+    for (auto sp : state_.particles.species) n_dipoles += d.species_carries[static_cast<std::size_t>(sp)] ? 1 : 0;
+    try {
+      d.ewald = choose_ewald_parameters(state_.box.edges(), n_dipoles, protocol_.ewald_accuracy);
+    } catch (const InputError& e) {
+      throw InputError(config_file_, "field.dipoles.accuracy", e.what());
+    }
+    d.ewald.minimum_image_only = protocol_.ewald_minimum_image_only;
+    engine_.set_dipoles(d, protocol_.field.direction);
+    summary_["ewald"] = {{"kappa", d.ewald.kappa}, {"r_cut", d.ewald.r_cut}, {"n_max", d.ewald.n_max},
+                         {"minimum_image_only", d.ewald.minimum_image_only}};
+    if (d.ewald.minimum_image_only) summary_["warnings"].push_back("dipoles by a truncated minimum-image sum (smoke-test option, not for production)");
+  }
+  preliminary_totals_.assign(ns, TrialCounts{});
+  production_totals_.assign(ns, TrialCounts{});
+  window_.assign(ns, TrialCounts{});
+}
+
+void DmcRunner::run_preliminary(const std::function<void(bool)>& tick) {
+  const bool needed = protocol_.balance == BalanceMode::Equilibrium && protocol_.preliminary_cycles > 0 &&
+                      (state_.species.size() > 1 || tracer_species_ >= 0);
+  if (!needed) return;
+  if (!summary_.contains("preliminary")) summary_["preliminary"] = nlohmann::json::array();
+  Progress progress("dmc preliminary balance", protocol_.preliminary_cycles * protocol_.preliminary_iterations, quiet_);
+  while (cursor_.preliminary_iteration < protocol_.preliminary_iterations) {
+    while (cursor_.preliminary_cycle < protocol_.preliminary_cycles) {
+      engine_.cycle();
+      for (std::size_t s = 0; s < preliminary_totals_.size(); ++s) preliminary_totals_[s].add(engine_.last_cycle()[s]);
+      ++cursor_.preliminary_cycle;
+      progress.update(cursor_.preliminary_iteration * protocol_.preliminary_cycles + cursor_.preliminary_cycle);
+      tick(true);
+    }
+    const std::vector<double> next = balance_->balanced_steps(preliminary_totals_, dt_);
+    double change = 0.0;
+    for (std::size_t s = 0; s < next.size(); ++s) change = std::max(change, std::abs(next[s] / dt_[s] - 1.0));
+    nlohmann::json it{{"cycles", protocol_.preliminary_cycles}, {"time_steps_before", dt_}, {"time_steps_after", next},
+                      {"relative_change", change}, {"acceptance", nlohmann::json::array()}, {"overlap_pass", nlohmann::json::array()}};
+    for (const auto& c : preliminary_totals_) {
+      it["acceptance"].push_back(c.acceptance());
+      it["overlap_pass"].push_back(c.pass_fraction());
+    }
+    summary_["preliminary"].push_back(it);
+    dt_ = next;
+    engine_.set_time_steps(dt_);
+    ++cursor_.preliminary_iteration;
+    cursor_.preliminary_cycle = 0;
+    if (change < protocol_.preliminary_tolerance || cursor_.preliminary_iteration == protocol_.preliminary_iterations) break;
+    std::fill(preliminary_totals_.begin(), preliminary_totals_.end(), TrialCounts{});
+  }
+  progress.finish();
+}
+
+void DmcRunner::run(io::H5mdWriter& out, std::int64_t checkpoint_every, const std::function<void()>& checkpoint) {
+  std::int64_t ticks = 0;
+  auto tick = [&](bool) {
+    ++ticks;
+    if (interrupt_requested()) {
+      checkpoint();
+      throw Interrupted("checkpoint written at " + std::string(cursor_.production ? "production" : "preliminary") +
+                        " cycle " + std::to_string(cursor_.production ? cursor_.cycle : cursor_.preliminary_cycle) +
+                        "; run again to resume");
+    }
+    if (checkpoint_every > 0 && ticks % checkpoint_every == 0) checkpoint();
+  };
+  if (!cursor_.production) {
+    run_preliminary(tick);
+    // The smoothed acceptance estimates of few-particle species start from the preliminary run.
+    balance_->seed(preliminary_totals_);
+    cursor_.production = true;
+  }
+  if (engine_.tracer().active()) {
+    const double validity = engine_.tracer().beta_force * engine_.tracer_parallel_step();
+    summary_["tracer_validity"] = validity;
+    if (validity > kTracerValidityLimit) {
+      const std::string w = "pulled tracer: βF·δx_par = " + std::to_string(validity) + " exceeds " +
+                            std::to_string(kTracerValidityLimit) + "; the DMC time mapping needs βF·δx ≪ 1 (use a smaller time step)";
+      if (std::find(summary_["warnings"].begin(), summary_["warnings"].end(), w) == summary_["warnings"].end())
+        summary_["warnings"].push_back(w);
+      std::fprintf(stderr, "anisodyn-dmc: warning: %s\n", w.c_str());
+    }
+  }
+  Progress progress("dmc production (per mille of the schedule)", 1000, quiet_);
+  if (!cursor_.segment_started) start_segment(out);
+  while (true) {
+    if (segment_done()) {
+      if (cursor_.segment + 1 >= protocol_.segments.size()) break;
+      ++cursor_.segment;
+      cursor_.segment_started = false;
+      start_segment(out);
+    }
+    production_cycle(out);
+    char detail[96];
+    std::snprintf(detail, sizeof detail, "t=%.4g field=%s", cursor_.time, engine_.field_on() ? "on" : "off");
+    progress.update(static_cast<std::int64_t>(1000.0 * schedule_fraction()), detail);
+    tick(true);
+  }
+  if (window_cycles_ > 0) observe(out);
+  if (cursor_.last_frame_cycle != cursor_.cycle) write_frame(out);
+  progress.finish();
+  finish_summary();
+}
+
+void DmcRunner::start_segment(io::H5mdWriter& out) {
+  const FieldSegment& seg = protocol_.segments[cursor_.segment];
+  const double now = seg.unit == FieldSegment::Unit::Cycles ? static_cast<double>(cursor_.cycle) : cursor_.time;
+  cursor_.segment_start = now;
+  cursor_.segment_end = seg.absolute ? seg.length : now + seg.length;
+  const bool first = cursor_.segment == 0;
+  if (first || seg.field_on != engine_.field_on()) switch_field(out, seg.field_on);
+  if (first && cursor_.cycle == 0) {
+    for (std::size_t s = 0; s < state_.species.size(); ++s) summary_["species"][s]["name"] = state_.species[s].name;
+    write_frame(out);
+  }
+  cursor_.segment_started = true;
+}
+
+bool DmcRunner::segment_done() const {
+  const FieldSegment& seg = protocol_.segments[cursor_.segment];
+  if (seg.unit == FieldSegment::Unit::Cycles) return static_cast<double>(cursor_.cycle) >= cursor_.segment_end;
+  return cursor_.time >= cursor_.segment_end;
+}
+
+double DmcRunner::schedule_fraction() const {
+  const FieldSegment& seg = protocol_.segments[cursor_.segment];
+  const double now = seg.unit == FieldSegment::Unit::Cycles ? static_cast<double>(cursor_.cycle) : cursor_.time;
+  const double span = cursor_.segment_end - cursor_.segment_start;
+  const double within = span > 0.0 ? std::clamp((now - cursor_.segment_start) / span, 0.0, 1.0) : 1.0;
+  return (static_cast<double>(cursor_.segment) + within) / static_cast<double>(protocol_.segments.size());
+}
+
+void DmcRunner::switch_field(io::H5mdWriter& out, bool on) {
+  OrientationalField& field = engine_.orientational_field();
+  if (on && field.active() && protocol_.check_field_direction) {
+    // The field must be perpendicular to the nematic director (spec 10 §5): if it is not, turn it
+    // into the plane perpendicular to the director and record the new direction.
+    for (std::size_t s = 0; s < state_.species.size(); ++s) {
+      if (!state_.species[s].shape.is_anisotropic()) continue;
+      const auto order = body_axis_order(state_, static_cast<int>(s));
+      int best = 0;
+      for (int k = 1; k < 3; ++k) if (order[static_cast<std::size_t>(k)].order > order[static_cast<std::size_t>(best)].order) best = k;
+      const Vec3 n = order[static_cast<std::size_t>(best)].director;
+      if (order[static_cast<std::size_t>(best)].order > kNematicThreshold && std::abs(n.dot(field.direction)) > 0.1) {
+        const Vec3 e = (field.direction - field.direction.dot(n) * n).normalized();
+        summary_["warnings"].push_back("field direction turned perpendicular to the director of axis " + std::string(1, kAxisLetters[best]) +
+                                       " at cycle " + std::to_string(cursor_.cycle));
+        field.direction = e;
+      }
+      break;
+    }
+  }
+  engine_.set_field_on(on);
+  const Vec3& e = field.direction;
+  out.append_observable("field_switches", cursor_.cycle, cursor_.time, std::vector<double>{on ? 1.0 : 0.0, e.x(), e.y(), e.z()});
+  out.set_observable_attribute("field_switches", "definition", "field state after a switch (1 on, 0 off) and the field direction x, y, z; the first row is the initial state");
+  out.set_observable_attribute("field_switches", "units", "1");
+  summary_["switches"].push_back({{"cycle", cursor_.cycle}, {"time", cursor_.time}, {"field", on ? "on" : "off"}});
+  cursor_.last_switch_cycle = cursor_.cycle;
+}
+
+void DmcRunner::production_cycle(io::H5mdWriter& out) {
+  const std::vector<double> dt_used = dt_;
+  engine_.cycle();
+  const auto& c = engine_.last_cycle();
+  const double dt_bd = balance_->advance(c, dt_);
+  if (protocol_.balance == BalanceMode::PerCycle) engine_.set_time_steps(dt_);
+  ++cursor_.cycle;
+  cursor_.time += dt_bd;
+  state_.step = cursor_.cycle;
+  state_.time = cursor_.time;
+  for (std::size_t s = 0; s < c.size(); ++s) {
+    production_totals_[s].add(c[s]);
+    window_[s].add(c[s]);
+  }
+  // The realised balance uses the time steps in force during the cycle.
+  if (window_balance_.empty()) window_balance_.assign(c.size(), 0.0);
+  const auto realised = balance_->realised_balance(c, dt_used);
+  for (std::size_t s = 0; s < c.size(); ++s) window_balance_[s] += realised[s];
+  ++window_cycles_;
+  if (cursor_.cycle % protocol_.observe_every == 0) observe(out);
+  if (engine_.tracer().active() && cursor_.cycle % protocol_.tracer->record_every == 0) {
+    const auto i = static_cast<std::size_t>(engine_.tracer().particle);
+    const Vec3 r = state_.box.unwrap(state_.particles.position(i), state_.particles.image(i));
+    out.append_observable("tracer_position", cursor_.cycle, cursor_.time, std::vector<double>{r.x(), r.y(), r.z()});
+  }
+  if (frame_due()) write_frame(out);
+}
+
+void DmcRunner::observe(io::H5mdWriter& out) {
+  const std::size_t ns = state_.species.size();
+  std::vector<double> acc(ns), pass(ns), balance(ns);
+  for (std::size_t s = 0; s < ns; ++s) {
+    acc[s] = window_[s].acceptance();
+    pass[s] = window_[s].pass_fraction();
+    balance[s] = window_balance_.empty() ? 0.0 : window_balance_[s] / static_cast<double>(window_cycles_);
+  }
+  const std::int64_t step = cursor_.cycle;
+  const double t = cursor_.time;
+  out.append_observable("acceptance", step, t, acc);
+  out.append_observable("overlap_pass", step, t, pass);
+  out.append_observable("time_step", step, t, dt_);
+  out.append_observable("balance", step, t, balance);
+  out.append_observable("field_on", step, t, engine_.field_on() ? 1.0 : 0.0);
+  const double n = static_cast<double>(state_.particles.size());
+  if (protocol_.field.active()) out.append_observable("field_energy", step, t, engine_.field_energy() / n);
+  if (protocol_.dipole_gamma > 0.0) out.append_observable("dipolar_energy", step, t, engine_.dipolar_energy() / n);
+  for (std::size_t s = 0; s < ns; ++s) {
+    if (!state_.species[s].shape.is_anisotropic()) continue;
+    const auto o = body_axis_order(state_, static_cast<int>(s));
+    out.append_observable("order_" + state_.species[s].name, step, t, std::vector<double>{o[0].order, o[1].order, o[2].order});
+  }
+  if (!attributes_written_) {
+    auto attr = [&](const std::string& name, const std::string& units, const std::string& definition) {
+      out.set_observable_attribute(name, "units", units);
+      out.set_observable_attribute(name, "definition", definition);
+    };
+    attr("acceptance", "1", "acceptance per species (order of /parameters/species) over the cycles since the previous row");
+    attr("overlap_pass", "1", "fraction of trials per species that passed the overlap test (the tracer's A_0)");
+    attr("time_step", "tau", "MC time step δt_MC per species in force after the row's cycle");
+    attr("balance", "1", "realised balance E_s δt_s / (E_ref δt_ref) per species, averaged over the cycles since the previous row");
+    attr("field_on", "1", "1 while the field is on, 0 while off");
+    if (protocol_.field.active()) attr("field_energy", "kT", "orientational-field energy per particle βU/N");
+    if (protocol_.dipole_gamma > 0.0) attr("dipolar_energy", "kT", "dipolar (Ewald, tinfoil) energy per particle βU/N; 0 while the field is off");
+    for (std::size_t s = 0; s < ns; ++s)
+      if (state_.species[s].shape.is_anisotropic())
+        attr("order_" + state_.species[s].name, "1", "uniaxial order parameters U_T, U_W, U_L (largest Q-tensor eigenvalue per body axis)");
+    if (engine_.tracer().active())
+      attr("tracer_position", "length unit of the study", "unwrapped centre of the pulled tracer");
+    attributes_written_ = true;
+  }
+  std::fill(window_.begin(), window_.end(), TrialCounts{});
+  std::fill(window_balance_.begin(), window_balance_.end(), 0.0);
+  window_cycles_ = 0;
+}
+
+bool DmcRunner::frame_due() {
+  const FrameRules& f = protocol_.frames;
+  const std::int64_t c = cursor_.cycle;
+  const double t = cursor_.time;
+  bool due = f.every_cycles > 0 && c % f.every_cycles == 0;
+  const std::int64_t since = c - cursor_.last_switch_cycle;
+  if (f.after_switch_every > 0 && since <= f.after_switch_for && since % f.after_switch_every == 0) due = true;
+  if (f.every_time > 0.0 && t >= static_cast<double>(cursor_.next_time_frame) * f.every_time) {
+    due = true;
+    while (static_cast<double>(cursor_.next_time_frame) * f.every_time <= t) ++cursor_.next_time_frame;
+  }
+  if (f.log_per_decade > 0.0) {
+    auto log_time = [&](std::int64_t k) { return f.log_first_time * std::pow(10.0, static_cast<double>(k) / f.log_per_decade); };
+    if (t >= log_time(cursor_.next_log_frame)) {
+      due = true;
+      while (log_time(cursor_.next_log_frame) <= t) ++cursor_.next_log_frame;
+    }
+  }
+  return due;
+}
+
+void DmcRunner::write_frame(io::H5mdWriter& out) {
+  out.append_frame(state_, {{"body_displacement", 3, engine_.body_displacement().data()},
+                            {"body_rotation", 3, engine_.body_rotation().data()},
+                            {"rotation_vector", 9, engine_.rotation_vectors().data()}});
+  cursor_.last_frame_cycle = cursor_.cycle;
+}
+
+void DmcRunner::finish_summary() {
+  const auto& ts = balance_->settings();
+  summary_["cycles"] = cursor_.cycle;
+  summary_["time"] = cursor_.time;
+  summary_["balance_mode"] = protocol_.balance == BalanceMode::PerCycle ? "per_cycle" : protocol_.balance == BalanceMode::None ? "none" : "equilibrium";
+  summary_["reference"] = state_.species[static_cast<std::size_t>(ts.reference)].name;
+  summary_["clock"] = state_.species[static_cast<std::size_t>(ts.clock)].name;
+  summary_["rotation"] = protocol_.moves.rotation == RotationComposition::ExponentialMap ? "exponential" : "sequential";
+  summary_["translation_frame"] = protocol_.moves.frame == TranslationFrame::Midpoint ? "midpoint" : "old";
+  const auto realised = balance_->realised_balance(production_totals_, dt_);
+  for (std::size_t s = 0; s < state_.species.size(); ++s) {
+    auto& j = summary_["species"][s];
+    j["name"] = state_.species[s].name;
+    j["time_step"] = dt_[s];
+    j["acceptance"] = production_totals_[s].acceptance();
+    j["overlap_pass"] = production_totals_[s].pass_fraction();
+    j["trials"] = production_totals_[s].tried;
+    j["realised_balance"] = realised[s];
+  }
+  if (engine_.tracer().active()) {
+    const auto& t = engine_.tracer();
+    const auto i = static_cast<std::size_t>(t.particle);
+    const TrialCounts& c = production_totals_[static_cast<std::size_t>(tracer_species_)];
+    nlohmann::json j{{"peclet", protocol_.tracer->peclet}, {"beta_force", t.beta_force}, {"parallel_step", engine_.tracer_parallel_step()},
+                     {"acceptance", c.acceptance()}, {"overlap_pass", c.pass_fraction()},
+                     {"a0", ts.a0 == TracerBathAcceptance::One ? nlohmann::json("one") : ts.a0 == TracerBathAcceptance::Fixed ? nlohmann::json(ts.a0_value) : nlohmann::json("overlap_pass")},
+                     {"displacement_along_force", engine_.body_displacement()[3 * i + static_cast<std::size_t>(t.axis)]}};
+    if (cursor_.time > 0.0) j["drift_velocity"] = j["displacement_along_force"].get<double>() / cursor_.time;
+    summary_["tracer"] = j;
+  }
+}
+
+nlohmann::json DmcRunner::checkpoint_state() const {
+  const DmcCursor& c = cursor_;
+  return {{"cursor",
+           {{"production", c.production}, {"preliminary_iteration", c.preliminary_iteration}, {"preliminary_cycle", c.preliminary_cycle},
+            {"cycle", c.cycle}, {"time", c.time}, {"segment", c.segment}, {"segment_started", c.segment_started},
+            {"segment_start", c.segment_start}, {"segment_end", c.segment_end}, {"last_switch_cycle", c.last_switch_cycle}, {"next_log_frame", c.next_log_frame},
+            {"next_time_frame", c.next_time_frame}, {"last_frame_cycle", c.last_frame_cycle}}},
+          {"time_steps", dt_},
+          {"engine", engine_.checkpoint()},
+          {"balance", balance_->checkpoint()},
+          {"preliminary_totals", counts_json(preliminary_totals_)},
+          {"production_totals", counts_json(production_totals_)},
+          {"window", counts_json(window_)},
+          {"window_balance", window_balance_},
+          {"window_cycles", window_cycles_},
+          {"summary", summary_}};
+}
+
+void DmcRunner::restore(const nlohmann::json& j) {
+  const auto& c = j.at("cursor");
+  cursor_.production = c.at("production").get<bool>();
+  cursor_.preliminary_iteration = c.at("preliminary_iteration").get<int>();
+  cursor_.preliminary_cycle = c.at("preliminary_cycle").get<std::int64_t>();
+  cursor_.cycle = c.at("cycle").get<std::int64_t>();
+  cursor_.time = c.at("time").get<double>();
+  cursor_.segment = c.at("segment").get<std::size_t>();
+  cursor_.segment_started = c.at("segment_started").get<bool>();
+  cursor_.segment_start = c.at("segment_start").get<double>();
+  cursor_.segment_end = c.at("segment_end").get<double>();
+  cursor_.last_switch_cycle = c.at("last_switch_cycle").get<std::int64_t>();
+  cursor_.next_log_frame = c.at("next_log_frame").get<std::int64_t>();
+  cursor_.next_time_frame = c.at("next_time_frame").get<std::int64_t>();
+  cursor_.last_frame_cycle = c.at("last_frame_cycle").get<std::int64_t>();
+  dt_ = j.at("time_steps").get<std::vector<double>>();
+  engine_.restore(j.at("engine"));
+  balance_->restore(j.at("balance"));
+  preliminary_totals_ = counts_from_json(j.at("preliminary_totals"));
+  production_totals_ = counts_from_json(j.at("production_totals"));
+  window_ = counts_from_json(j.at("window"));
+  window_balance_ = j.at("window_balance").get<std::vector<double>>();
+  window_cycles_ = j.at("window_cycles").get<std::int64_t>();
+  summary_ = j.at("summary");
+}
+
+}  // namespace anisodyn

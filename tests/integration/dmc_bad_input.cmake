@@ -1,0 +1,1 @@
+anisodyn_add_script_test(dmc_bad_input dmc_bad_input.sh)

@@ -1,0 +1,1 @@
+anisodyn_add_script_test(dmc_pipeline dmc_pipeline.py)
