@@ -6,11 +6,12 @@
 // Positions: uniform random with centre distances ≥ 1.1σ (fixed seed). Trial moves: a random
 // particle displaced uniformly in [−0.1, 0.1]³ and wrapped, 4096 precomputed moves cycled, so
 // the RNG is not timed.
-//   Delta/<N>        delta_energy only (the MC trial: move rejected or not yet decided);
+//   Delta/<N>/<a>    delta_energy only (the MC trial: move rejected or not yet decided), at
+//                    accuracy 10^−a (a = 5: the default);
 //   DeltaAccept/<N>  delta_energy + accept + position update on every move (upper bound of an
 //                    accepted move);
 //   RealErfc/<N>     the same real-space sum written naively with std::erfc/std::exp and a
-//                    branch on r < r_cut (for comparison with the tabulated kernel);
+//                    branch on r < r_cut (for comparison with the polynomial kernel);
 //   Bare/<N>         minimum_image_only smoke-test mode;
 //   Rebuild/<N>, Total/<N>  S(k) from scratch and the full energy (not in the inner loop).
 //   Accuracy/<N>/<fluid|strings>  (one iteration, not a timing) ΔU of 500 trial moves with the
@@ -89,7 +90,8 @@ void set_counters(benchmark::State& state, const DipolarEwald& ew) {
 
 void BM_Delta(benchmark::State& state) {
   Setup s = make_setup(static_cast<std::size_t>(state.range(0)));
-  DipolarEwald ew(s.L, Vec3::UnitZ(), 13.0, choose_ewald_parameters(s.L, s.p.size(), 1e-5), s.dip);
+  const double accuracy = std::pow(10.0, -static_cast<double>(state.range(1)));
+  DipolarEwald ew(s.L, Vec3::UnitZ(), 13.0, choose_ewald_parameters(s.L, s.p.size(), accuracy), s.dip);
   ew.rebuild(s.p);
   std::size_t m = 0;
   for (auto _ : state) {
@@ -223,7 +225,7 @@ void BM_Accuracy(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_Accuracy)->Args({1500, 0})->Args({1500, 1})->Args({125, 0})->Args({125, 1})->Iterations(1)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Delta)->Arg(1500)->Arg(125);
+BENCHMARK(BM_Delta)->Args({1500, 5})->Args({125, 5})->Args({1500, 7})->Args({125, 7});
 BENCHMARK(BM_DeltaAccept)->Arg(1500)->Arg(125);
 BENCHMARK(BM_RealErfc)->Arg(1500)->Arg(125);
 BENCHMARK(BM_Bare)->Arg(1500)->Arg(125);

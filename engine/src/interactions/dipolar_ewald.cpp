@@ -3,11 +3,11 @@
 #include "anisodyn/interactions/dipolar_ewald.hpp"
 
 #include <algorithm>
-#include <type_traits>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "anisodyn/core/error.hpp"
 
@@ -251,20 +251,25 @@ EwaldParameters choose_ewald_parameters(const Vec3& L, std::size_t n, double acc
   check_box(L);
   if (!(accuracy > 0.0 && accuracy < 0.1))
     throw InputError("", "ewald.accuracy", "expected a relative accuracy in (0, 0.1), got " + num(accuracy));
+  // Each part gets accuracy/√2, so that the combined per-particle estimate is ≤ accuracy.
+  const double part = accuracy / std::sqrt(2.0);
   EwaldParameters p;
   p.r_cut = 0.5 * L.minCoeff();
-  // Smallest X = κ r_cut ≥ 1 with the real-space estimate ≤ accuracy (decreasing in X for X ≥ 1.3).
-  double lo = 1.3, hi = 40.0;
-  if (ewald_real_space_error(L, n, lo / p.r_cut, p.r_cut) <= accuracy) {
+  // Smallest X = κ r_cut with the real-space estimate ≤ part (decreasing in X for X ≥ 1.3).
+  double lo = 1.3, hi = 7.0;
+  if (ewald_real_space_error(L, n, hi / p.r_cut, p.r_cut) > part)
+    throw InputError("", "ewald.accuracy",
+                     "expected an accuracy reachable with κ·r_cut ≤ 7 (about 1e-20 or larger), got " + num(accuracy));
+  if (ewald_real_space_error(L, n, lo / p.r_cut, p.r_cut) <= part) {
     hi = lo;
   } else {
     for (int it = 0; it < 200; ++it) {
       const double mid = 0.5 * (lo + hi);
-      if (ewald_real_space_error(L, n, mid / p.r_cut, p.r_cut) <= accuracy) hi = mid; else lo = mid;
+      if (ewald_real_space_error(L, n, mid / p.r_cut, p.r_cut) <= part) hi = mid; else lo = mid;
     }
   }
   p.kappa = hi / p.r_cut;
-  p.n_max = ewald_n_max_for(L, n, p.kappa, accuracy);
+  p.n_max = ewald_n_max_for(L, n, p.kappa, part);
   return p;
 }
 
@@ -295,7 +300,7 @@ DipolarEwald::DipolarEwald(const Vec3& box_edges, const Vec3& direction, double 
     if (!(params_.r_cut > 0.0 && params_.r_cut <= half * (1 + 1e-12)))
       throw InputError("", "ewald.r_cut",
                        "expected a cut-off in (0, " + num(half) + "] (half the shortest edge), got " + num(params_.r_cut));
-    if (params_.kappa * params_.r_cut > 7.0)
+    if (params_.kappa * params_.r_cut > 7.0 * (1 + 1e-12))
       throw InputError("", "ewald.kappa",
                        "expected κ·r_cut ≤ 7 (erfc(7) = 4e-23; the real-space polynomial is built for that range), got " +
                            num(params_.kappa * params_.r_cut));
@@ -397,6 +402,20 @@ void DipolarEwald::build_polynomials() {
   }
 }
 
+int DipolarEwald::column_extent(int nx, int ny) const {
+  // |k| ≤ 2π n_max/L_max ⇔ Σ_a (n_a L_max/L_a)² ≤ n_max² (exact integers for a cubic box; the
+  // 1e-12 keeps boundary vectors of other boxes from depending on rounding).
+  nx = std::abs(nx);
+  ny = std::abs(ny);
+  if (nx > nx_max_ || ny > ny_max_) return -1;
+  const Vec3 scale = L_.maxCoeff() * invL_;
+  const double lim = static_cast<double>(params_.n_max) * params_.n_max * (1.0 + 1e-12);
+  const double qx = nx * scale.x(), qy = ny * scale.y();
+  const double rem = lim - qx * qx - qy * qy;
+  if (rem < 0.0) return -1;
+  return std::min(nz_max_, static_cast<int>(std::floor(std::sqrt(rem) / scale.z())));
+}
+
 void DipolarEwald::build_kvectors() {
   columns_.clear();
   sre_.clear();
@@ -409,9 +428,7 @@ void DipolarEwald::build_kvectors() {
     return;
   }
   const int nm = params_.n_max;
-  const double lmax = L_.maxCoeff();
-  const double lim = static_cast<double>(nm) * nm * (1.0 + 1e-12);
-  const Vec3 scale = lmax * invL_;  // n_a · L_max/L_a: n-space coordinates scaled to the longest edge
+  const Vec3 scale = L_.maxCoeff() * invL_;  // n_a L_max/L_a: n space scaled to the longest edge
   nx_max_ = static_cast<int>(std::floor(nm / scale.x() * (1.0 + 1e-12)));
   ny_max_ = static_cast<int>(std::floor(nm / scale.y() * (1.0 + 1e-12)));
   nz_max_ = static_cast<int>(std::floor(nm / scale.z() * (1.0 + 1e-12)));
@@ -419,10 +436,8 @@ void DipolarEwald::build_kvectors() {
   const double pref = 4.0 * kPi / volume_;
   for (int nx = 0; nx <= nx_max_; ++nx)
     for (int ny = (nx == 0 ? 0 : -ny_max_); ny <= ny_max_; ++ny) {
-      const double qx = nx * scale.x(), qy = ny * scale.y();
-      const double rem = lim - qx * qx - qy * qy;
-      if (rem < 0.0) continue;
-      const int mz = std::min(nz_max_, static_cast<int>(std::floor(std::sqrt(rem) / scale.z())));
+      const int mz = column_extent(nx, ny);
+      if (mz < 0) continue;
       const int lo = (nx == 0 && ny == 0) ? 1 : -mz;
       if (lo > mz) continue;
       columns_.push_back({nx, ny, lo, mz, prefactor_.size()});
@@ -472,9 +487,6 @@ void DipolarEwald::build_constants() {
   // N (2π/V) Σ_{k∉K} (Ê·k)²/k² e^{−k²/4κ²}, up to k²/4κ² = 64.
   {
     const double kmax = 16.0 * kd;
-    const double lmax = L_.maxCoeff();
-    const double lim = static_cast<double>(params_.n_max) * params_.n_max * (1.0 + 1e-12);
-    const Vec3 scale = lmax * invL_;
     const int mx = static_cast<int>(std::ceil(kmax * L_.x() / (2 * kPi)));
     const int my = static_cast<int>(std::ceil(kmax * L_.y() / (2 * kPi)));
     const int mz = static_cast<int>(std::ceil(kmax * L_.z() / (2 * kPi)));
@@ -483,9 +495,7 @@ void DipolarEwald::build_constants() {
       for (int b = -my; b <= my; ++b)
         for (int c = -mz; c <= mz; ++c) {
           if (a == 0 && b == 0 && c == 0) continue;
-          const double q = (a * scale.x()) * (a * scale.x()) + (b * scale.y()) * (b * scale.y()) +
-                           (c * scale.z()) * (c * scale.z());
-          if (q <= lim) continue;  // in the reciprocal sum
+          if (std::abs(c) <= column_extent(a, b)) continue;  // in the reciprocal sum
           const long double kx = 2 * kPiL * a / L_.x(), ky = 2 * kPiL * b / L_.y(), kz = 2 * kPiL * c / L_.z();
           const long double k2 = kx * kx + ky * ky + kz * kz;
           if (k2 > static_cast<long double>(kmax) * kmax) continue;

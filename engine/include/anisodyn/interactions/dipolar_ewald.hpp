@@ -14,7 +14,7 @@
 //   - real space: a loop over all particles j in index order with the minimum image and r < r_cut
 //     (r_cut ≤ half the shortest edge). B and C are split into the bare parts 1/r³, 3/r⁵ (computed
 //     exactly) and remainders b(r²), c(r²), entire functions of r², evaluated as one polynomial
-//     each on [0, r_cut²] (degree 20–48 chosen for an error ≲ 1e-15 of their scale; no table
+//     each on [0, r_cut²] (degree 12–48 chosen for an error ≲ 1e-15 of their scale; no table
 //     look-ups, so the loop vectorises). total_energy and delta_energy use the same pair function,
 //     so ΔU equals the difference of totals to rounding.
 //   - reciprocal space: the half space of k = 2π(n_x/L_x, n_y/L_y, n_z/L_z) with |k| ≤ 2π n_max/L_max
@@ -48,11 +48,13 @@ double ewald_reciprocal_error(const Vec3& box_edges, std::size_t n_dipoles, doub
 int ewald_n_max_for(const Vec3& box_edges, std::size_t n_dipoles, double kappa, double accuracy);
 
 /// Parameters for a requested accuracy (default 1e-5): the estimated RMS error of each particle's
-/// energy, hence of ΔU for a single-particle move, is ≤ accuracy · γ/2 (γ/2 = |βu| of a
-/// side-by-side contact pair) for each of the real and reciprocal parts. r_cut = half the shortest
-/// edge (the real-space sum loops over all dipoles, cheapest for N up to a few thousand), κ from the
-/// real-space estimate, n_max from the reciprocal estimate.
-/// Throws InputError("", "ewald.accuracy", "expected ...") for accuracy outside (0, 0.1).
+/// energy, real and reciprocal parts combined (each ≤ accuracy/√2), is ≤ accuracy · γ/2
+/// (γ/2 = |βu| of a side-by-side contact pair). ΔU of a move is a difference of two such
+/// energies: ≤ √2 · accuracy · γ/2 for a jump across the box, much less for small moves (measured
+/// in docs/ewald.md). r_cut = half the shortest edge (the real-space sum loops over all dipoles,
+/// cheapest for N up to a few thousand), κ from the real-space estimate, n_max from the
+/// reciprocal estimate. Throws InputError("", "ewald.accuracy", "expected ...") for accuracy
+/// outside (0, 0.1).
 EwaldParameters choose_ewald_parameters(const Vec3& box_edges, std::size_t n_dipoles, double accuracy = 1e-5);
 
 class DipolarEwald {
@@ -84,15 +86,17 @@ class DipolarEwald {
   std::size_t wave_vector_count() const { return sre_.size(); }  // half-space count
 
   double gamma() const { return gamma_; }
-  /// Field switching (spec §6.3) at a cycle boundary; S(k) is unaffected.
+  /// Field switching (spec §6.3) at a cycle boundary; S(k) is unaffected. With γ = 0 every ΔU is 0
+  /// but still costs a full evaluation: skipping the calls and calling rebuild() at switch-on is
+  /// cheaper (docs/ewald.md).
   void set_gamma(double gamma);
   const Vec3& direction() const { return dir_; }
   const Vec3& box_edges() const { return L_; }
   std::size_t particle_count() const { return weight_.size(); }
   std::size_t dipole_count() const { return n_dipoles_; }
 
-  /// The real-space pair function ψ(d) as used in the sums (tabulated remainders), without γ/2;
-  /// 0 for |d| ≥ r_cut. d must already be minimum-imaged. For tests.
+  /// The real-space pair function ψ(d) exactly as used in the sums (polynomial remainders), without
+  /// γ/2, for the minimum image of d; 0 beyond r_cut. For tests.
   double real_space_psi(const Vec3& d) const;
   /// Degree of the real-space remainder polynomials (0 in minimum_image_only mode).
   int real_space_degree() const { return degree_; }
@@ -100,11 +104,11 @@ class DipolarEwald {
   double constant_energy() const;
 
  private:
-  double real_space_delta(const Particles& p, std::size_t i, const Vec3& r_new);
   double reciprocal_delta(const Vec3& r_old, const Vec3& r_new);
   void phase_tables(const Vec3& r, double* ph) const;
   void compute_structure_factor(const Particles& p, std::vector<double>& sre, std::vector<double>& sim) const;
   void build_kvectors();
+  int column_extent(int nx, int ny) const;  // largest |n_z| in the cut-off, −1 if none
   void build_polynomials();
   void build_constants();
 
