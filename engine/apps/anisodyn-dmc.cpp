@@ -40,12 +40,14 @@ int main(int argc, char** argv) {
     State state;
     nlohmann::json engine_state;
     if (resuming) {
-      auto [s, j] = io::read_checkpoint_file(checkpoint_path);
-      if (io::H5mdReader(checkpoint_path).parameters() != parameters)
+      const io::H5mdReader checkpoint(checkpoint_path);
+      if (checkpoint.parameters() != parameters)
         throw InputError(checkpoint_path, "/parameters", "a checkpoint of the same configuration; this one was written with "
                                                          "different parameters: delete it to start afresh");
-      state = std::move(s);
-      engine_state = std::move(j);
+      const auto j = checkpoint.checkpoint();
+      if (!j) throw InputError(checkpoint_path, "/anisodyn/checkpoint", "an engine state");
+      state = checkpoint.read_frame(-1);
+      engine_state = *j;
     } else {
       state = io::H5mdReader(input).read_frame(-1);
     }
@@ -65,8 +67,6 @@ int main(int argc, char** argv) {
     std::optional<io::H5mdWriter> out;
     if (resuming) {
       runner->restore(engine_state.at("runner"));
-      state.step = engine_state.at("step").get<std::int64_t>();
-      state.time = engine_state.at("time").get<double>();
       out.emplace(io::H5mdWriter::resume(opt.output, runner->last_output_step()));
       if (!opt.quiet) std::fprintf(stderr, "anisodyn-dmc: resuming from %s\n", checkpoint_path.c_str());
     } else {
@@ -74,7 +74,7 @@ int main(int argc, char** argv) {
     }
 
     auto checkpoint = [&] {
-      const nlohmann::json j{{"runner", runner->checkpoint_state()}, {"step", state.step}, {"time", state.time}};
+      const nlohmann::json j{{"runner", runner->checkpoint_state()}};
       out->write_checkpoint(j);  // flushes the streamed output first
       io::write_checkpoint_file(checkpoint_path, header, state, j);
     };
@@ -85,7 +85,7 @@ int main(int argc, char** argv) {
       out->suspend();
       throw;
     }
-    out->write_checkpoint({{"runner", runner->checkpoint_state()}, {"step", state.step}, {"time", state.time}});
+    out->write_checkpoint({{"runner", runner->checkpoint_state()}});
     out->commit();
     std::filesystem::remove(checkpoint_path);
     std::cout << runner->summary().dump(2) << std::endl;

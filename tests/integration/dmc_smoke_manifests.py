@@ -50,4 +50,4 @@ for manifest in sorted(glob.glob(os.path.join(source, "manifests", "smoke", "*.j
         print(f"ok   {study}: {time.time() - t0:.1f} s, {pos.shape[0]} frames of {pos.shape[1]} particles, t = {t[-1]:.4g}, "
               f"acceptance {np.round(acc.mean(axis=0), 3).tolist()}")
 print(f"{'0 failed' if failures == 0 else f'{failures} failed'}")
-sys.exit(1 if failures else 0)
+assert failures == 0, f"{failures} smoke manifest(s) failed (see above)"

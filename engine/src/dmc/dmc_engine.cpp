@@ -20,8 +20,6 @@ Vec3 uniform_in_box(Rng& rng, const Vec3& half) {
   const double c = rng.uniform(-half.z(), half.z());
   return Vec3(a, b, c);
 }
-
-nlohmann::json vector_json(const std::vector<double>& v) { return nlohmann::json(v); }
 }  // namespace
 
 DmcEngine::DmcEngine(State& state, const RngState& rng, const DmcMoveOptions& options)
@@ -228,9 +226,9 @@ nlohmann::json DmcEngine::checkpoint() const {
                    {"time_steps", dt_},
                    {"field_on", field_on_},
                    {"field_direction", {field_.direction.x(), field_.direction.y(), field_.direction.z()}},
-                   {"body_displacement", vector_json(body_displacement_)},
-                   {"body_rotation", vector_json(body_rotation_)},
-                   {"rotation_vector", vector_json(rotation_vector_)}};
+                   {"body_displacement", body_displacement_},
+                   {"body_rotation", body_rotation_},
+                   {"rotation_vector", rotation_vector_}};
   if (ewald_ && field_on_) {
     j["structure_factor"] = ewald_->structure_factor();
     j["dipolar_energy"] = dipolar_energy_;

@@ -147,7 +147,7 @@ void DmcRunner::configure_species() {
   window_.assign(ns, TrialCounts{});
 }
 
-void DmcRunner::run_preliminary(const std::function<void(bool)>& tick) {
+void DmcRunner::run_preliminary(const std::function<void()>& tick) {
   const bool needed = protocol_.balance == BalanceMode::Equilibrium && protocol_.preliminary_cycles > 0 &&
                       (state_.species.size() > 1 || tracer_species_ >= 0);
   if (!needed) return;
@@ -159,7 +159,7 @@ void DmcRunner::run_preliminary(const std::function<void(bool)>& tick) {
       for (std::size_t s = 0; s < preliminary_totals_.size(); ++s) preliminary_totals_[s].add(engine_.last_cycle()[s]);
       ++cursor_.preliminary_cycle;
       progress.update(cursor_.preliminary_iteration * protocol_.preliminary_cycles + cursor_.preliminary_cycle);
-      tick(true);
+      tick();
     }
     const std::vector<double> next = balance_->balanced_steps(preliminary_totals_, dt_);
     double change = 0.0;
@@ -182,16 +182,17 @@ void DmcRunner::run_preliminary(const std::function<void(bool)>& tick) {
 }
 
 void DmcRunner::run(io::H5mdWriter& out, std::int64_t checkpoint_every, const std::function<void()>& checkpoint) {
-  std::int64_t ticks = 0;
-  auto tick = [&](bool) {
-    ++ticks;
+  // Checkpoint instants follow the cycle count (preliminary + production), so a resumed run keeps
+  // the cadence of the original one.
+  auto tick = [&] {
     if (interrupt_requested()) {
       checkpoint();
       throw Interrupted("checkpoint written at " + std::string(cursor_.production ? "production" : "preliminary") +
                         " cycle " + std::to_string(cursor_.production ? cursor_.cycle : cursor_.preliminary_cycle) +
                         "; run again to resume");
     }
-    if (checkpoint_every > 0 && ticks % checkpoint_every == 0) checkpoint();
+    const std::int64_t done = cursor_.preliminary_iteration * protocol_.preliminary_cycles + cursor_.preliminary_cycle + cursor_.cycle;
+    if (checkpoint_every > 0 && done % checkpoint_every == 0) checkpoint();
   };
   if (!cursor_.production) {
     run_preliminary(tick);
@@ -223,7 +224,7 @@ void DmcRunner::run(io::H5mdWriter& out, std::int64_t checkpoint_every, const st
     char detail[96];
     std::snprintf(detail, sizeof detail, "t=%.4g field=%s", cursor_.time, engine_.field_on() ? "on" : "off");
     progress.update(static_cast<std::int64_t>(1000.0 * schedule_fraction()), detail);
-    tick(true);
+    tick();
   }
   if (window_cycles_ > 0) observe(out);
   if (cursor_.last_frame_cycle != cursor_.cycle) write_frame(out);
@@ -238,10 +239,7 @@ void DmcRunner::start_segment(io::H5mdWriter& out) {
   cursor_.segment_end = seg.absolute ? seg.length : now + seg.length;
   const bool first = cursor_.segment == 0;
   if (first || seg.field_on != engine_.field_on()) switch_field(out, seg.field_on);
-  if (first && cursor_.cycle == 0) {
-    for (std::size_t s = 0; s < state_.species.size(); ++s) summary_["species"][s]["name"] = state_.species[s].name;
-    write_frame(out);
-  }
+  if (first && cursor_.cycle == 0) write_frame(out);
   cursor_.segment_started = true;
 }
 
@@ -465,6 +463,8 @@ void DmcRunner::restore(const nlohmann::json& j) {
   window_balance_ = j.at("window_balance").get<std::vector<double>>();
   window_cycles_ = j.at("window_cycles").get<std::int64_t>();
   summary_ = j.at("summary");
+  state_.step = cursor_.cycle;
+  state_.time = cursor_.time;
 }
 
 }  // namespace anisodyn

@@ -45,13 +45,14 @@ class DmcRunner {
   /// dropped when resuming.
   std::int64_t last_output_step() const { return cursor_.production ? cursor_.cycle : -1; }
   nlohmann::json checkpoint_state() const;
+  /// Also sets the state's step and time to the checkpoint's production cycle and Brownian time.
   void restore(const nlohmann::json& j);
   const nlohmann::json& summary() const { return summary_; }
   const DmcEngine& engine() const { return engine_; }
 
  private:
   void configure_species();
-  void run_preliminary(const std::function<void(bool)>& tick);
+  void run_preliminary(const std::function<void()>& tick);
   void start_segment(io::H5mdWriter& out);
   bool segment_done() const;
   /// Fraction of the schedule done, for progress reports.
