@@ -5,6 +5,7 @@
 #include <set>
 
 #include "anisodyn/core/error.hpp"
+#include "anisodyn/system/species_config.hpp"
 
 namespace anisodyn {
 
@@ -200,6 +201,14 @@ DmcProtocol parse_dmc_protocol(io::ConfigNode& cfg) {
       if (!name.empty() && name[0] == '_') continue;
       auto node = sp->object(name);
       auto& d = p.diffusion[name];
+      if (auto from = node.optional_object("diffusion_from")) {
+        for (const char* key : {"D_trans", "D_rot"})
+          if (node.has(key)) node.fail(key, "expected either diffusion_from or explicit D_trans/D_rot, not both");
+        const DiffusionFromFile f = read_diffusion_from(*from, std::nullopt);
+        d.first = f.D_trans;
+        d.second = f.D_rot;
+        p.diffusion_shape.emplace(name, f.shape);
+      }
       if (node.has("D_trans")) d.first = node.vec3("D_trans");
       if (node.has("D_rot")) d.second = node.vec3("D_rot");
       for (const auto& v : {d.first, d.second})
@@ -226,6 +235,10 @@ void check_protocol_species(const DmcProtocol& p, const State& state, const std:
   if (!p.clock.empty()) require(p.clock, "balance.clock");
   for (std::size_t k = 0; k < p.dipole_species.size(); ++k) require(p.dipole_species[k], "field.dipoles.species[" + std::to_string(k) + "]");
   for (const auto& [name, d] : p.diffusion) require(name, "species." + name);
+  for (const auto& [name, shape] : p.diffusion_shape)
+    if (!same_shape(shape, state.species[static_cast<std::size_t>(index(name))].shape))
+      throw InputError(file, "species." + name + ".diffusion_from",
+                       "expected a species file entry with the same shape as the input's species '" + name + "'");
   if (p.tracer) {
     require(p.tracer->species, "tracer.species");
     const int s = index(p.tracer->species);

@@ -1,6 +1,10 @@
 #include "anisodyn/system/species_config.hpp"
 
+#include <filesystem>
 #include <set>
+
+#include "anisodyn/core/error.hpp"
+#include "anisodyn/io/species_file.hpp"
 
 namespace anisodyn {
 
@@ -33,21 +37,62 @@ const ShapeRegistration kShapeRegistry[] = {
 };
 }  // namespace
 
-Shape parse_shape(io::ConfigNode node) {
-  std::vector<std::string> names;
-  for (const auto& r : kShapeRegistry) names.emplace_back(r.type);
-  const std::string type = node.choice("type", names);
-  for (const auto& r : kShapeRegistry)
-    if (type == r.type) return r.parse(node);
-  node.fail("type", "expected a known shape type");
+std::string resolve_data_path(const std::string& path, const std::string& relative_to_file) {
+  if (std::filesystem::path(path).is_absolute() || std::filesystem::exists(path)) return path;
+  const auto beside = std::filesystem::path(relative_to_file).parent_path() / path;
+  return std::filesystem::exists(beside) ? beside.string() : path;
 }
+
+bool same_shape(const Shape& a, const Shape& b) {
+  auto close = [](double x, double y) { return std::abs(x - y) <= 1e-9 * std::max({1.0, std::abs(x), std::abs(y)}); };
+  return a.kind == b.kind && close(a.diameter, b.diameter) && close(a.length, b.length) &&
+         close(a.edges.x(), b.edges.x()) && close(a.edges.y(), b.edges.y()) && close(a.edges.z(), b.edges.z());
+}
+
+DiffusionFromFile read_diffusion_from(io::ConfigNode node, const std::optional<Shape>& expected_shape) {
+  const std::string file = resolve_data_path(node.string("file"), node.file());
+  const std::string name = node.string("species");
+  nlohmann::json doc;
+  try {
+    doc = io::read_species_file(file);
+  } catch (const InputError& e) {
+    node.fail("file", std::string("expected a readable species file written by anisodyn-hydro (") + e.what() + ")");
+  }
+  const nlohmann::json* found = nullptr;
+  try {
+    found = &io::species_file_entry(doc, file, name);
+  } catch (const InputError& e) {
+    node.fail("species", std::string("expected a species of ") + file + " (" + e.what() + ")");
+  }
+  const nlohmann::json& entry = *found;
+  io::ConfigNode e(entry, file, "species[" + name + "]");
+  DiffusionFromFile d;
+  d.shape = parse_shape(e.object("shape"));
+  d.D_trans = e.positive_vec3("D_trans");
+  d.D_rot = e.vec3("D_rot");
+  if (expected_shape && !same_shape(*expected_shape, d.shape))
+    node.fail("species", "expected the same shape as this species; '" + name + "' in " + file + " is " +
+                             entry.at("shape").dump());
+  return d;
+}
+
+Shape parse_shape(io::ConfigNode node) { return io::parse_registered(node, "type", kShapeRegistry); }
 
 Species parse_species(io::ConfigNode node) {
   Species s;
   s.name = node.string("name");
   if (s.name.empty()) node.fail("name", "expected a non-empty species name");
-  s.shape = parse_shape(node.object("shape"));
   s.mass = node.positive("mass", 1.0);
+  if (auto from = node.optional_object("diffusion_from")) {
+    for (const char* key : {"D_trans", "D_rot"})
+      if (node.has(key)) node.fail(key, "expected either diffusion_from or explicit D_trans/D_rot, not both");
+    const DiffusionFromFile d = read_diffusion_from(*from, node.has("shape") ? std::optional(parse_shape(node.object("shape"))) : std::nullopt);
+    s.shape = d.shape;
+    s.D_trans = d.D_trans;
+    s.D_rot = d.D_rot;
+    return s;
+  }
+  s.shape = parse_shape(node.object("shape"));
   auto non_negative_vec3 = [&](const std::string& key) {
     const Vec3 v = node.vec3(key, Vec3::Zero());
     if (v.minCoeff() < 0.0) node.fail(key, "expected three non-negative diffusion coefficients (body axes T, W, L)");

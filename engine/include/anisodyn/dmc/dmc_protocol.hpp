@@ -65,6 +65,7 @@ struct DmcProtocol {
   std::int64_t observe_every = 1;
   /// Diffusion coefficients replacing those of the input's species table.
   std::map<std::string, std::pair<std::optional<Vec3>, std::optional<Vec3>>> diffusion;
+  std::map<std::string, Shape> diffusion_shape;  // shapes of entries taken from species files (checked against the input)
 };
 
 /// Parses the configuration. Names of species are checked later against the input state

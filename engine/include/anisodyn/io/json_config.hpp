@@ -120,4 +120,16 @@ class ConfigNode {
   std::shared_ptr<Usage> usage_;
 };
 
+/// Dispatches on node[key] over a registry of {const char* type; Result (*parse)(ConfigNode&)}
+/// entries (one line per registered type): unknown types get the list of known ones.
+template <class Registry>
+auto parse_registered(ConfigNode& node, const std::string& key, const Registry& registry) {
+  std::vector<std::string> names;
+  for (const auto& r : registry) names.emplace_back(r.type);
+  const std::string type = node.choice(key, names);
+  for (const auto& r : registry)
+    if (type == r.type) return r.parse(node);
+  node.fail(key, "expected a known type");
+}
+
 }  // namespace anisodyn::io

@@ -2,13 +2,32 @@
 // Species from JSON:
 //   {"name": "board", "shape": {"type": "cuboid", "edges": [1, 3.46, 12]},
 //    "mass": 1, "D_trans": [Dt_T, Dt_W, Dt_L], "D_rot": [Dr_T, Dr_W, Dr_L]}
+// or, with the diffusion coefficients from a species file written by anisodyn-hydro:
+//   {"name": "board", "diffusion_from": {"file": "manifests/data/boards_L12.species.json",
+//                                        "species": "board_W1"}}
+// (the shape comes from the file; if "shape" is given too it must match). A relative file path is
+// taken from the working directory, else from the directory of the configuration file.
 // Shape types: sphere {diameter}, cuboid {edges: [T, W, L]}, cube {edge},
 // spherocylinder {length, diameter}. Diffusion coefficients default to zero (MC does not need
 // them; the dynamics engines check that they are set).
 #include "anisodyn/io/json_config.hpp"
 #include "anisodyn/system/species.hpp"
 
+#include <optional>
+
 namespace anisodyn {
+
+struct DiffusionFromFile {
+  Shape shape;
+  Vec3 D_trans = Vec3::Zero();
+  Vec3 D_rot = Vec3::Zero();
+};
+
+/// Same kind and dimensions (to 1e-9 relative).
+bool same_shape(const Shape& a, const Shape& b);
+
+/// Reads {"file", "species"}; checks the file's shape against expected_shape when given.
+DiffusionFromFile read_diffusion_from(io::ConfigNode node, const std::optional<Shape>& expected_shape);
 
 Shape parse_shape(io::ConfigNode node);
 Species parse_species(io::ConfigNode node);

@@ -1,0 +1,1 @@
+anisodyn_add_script_test(hydro_tool hydro_tool.sh)

@@ -1,0 +1,226 @@
+// Bead-model hydrodynamics (engine/*/hydro): each piece against an independent reference.
+//  - RPY pair mobility: the far-field Oseen limit, continuity at r = 2a, the self term at r = 0;
+//  - the mirror-symmetry block solve against the plain dense solve of the same beads;
+//  - the centre of diffusion and the change of reference point against a recomputation with the
+//    beads shifted (brute force), and the symmetric coupling at the centre of diffusion;
+//  - the extrapolated sphere against Stokes–Einstein and Stokes–Einstein–Debye (0.5 %), a prolate
+//    spheroid against Perrin (1 % translation, 2 % rotation; tests/support/hydro_theory.hpp);
+//  - shells lie on the surface they model; bad shell series are refused;
+//  - species files round-trip through JSON and HDF5 and feed species definitions.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <random>
+
+#include "anisodyn/core/error.hpp"
+#include "anisodyn/hydro/diffusion_tensor.hpp"
+#include "anisodyn/hydro/extrapolation.hpp"
+#include "anisodyn/hydro/mirror_symmetry.hpp"
+#include "anisodyn/hydro/rigid_body_resistance.hpp"
+#include "anisodyn/hydro/rpy.hpp"
+#include "anisodyn/hydro/shell_surface.hpp"
+#include "anisodyn/io/json_config.hpp"
+#include "anisodyn/io/species_file.hpp"
+#include "anisodyn/system/species_config.hpp"
+#include "hydro_theory.hpp"
+#include "scratch_dir.hpp"
+
+using namespace anisodyn;
+using namespace anisodyn::hydro;
+
+namespace {
+
+double relative_difference(double a, double b) { return std::abs(a - b) / std::abs(b); }
+
+/// An irregular bead cluster with no mirror symmetry (random points on a lumpy surface).
+std::vector<Vec3> irregular_beads(std::size_t n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> g;
+  std::vector<Vec3> out;
+  while (out.size() < n) {
+    const Vec3 u = Vec3(g(rng), g(rng), g(rng)).normalized();
+    const Vec3 p = Vec3(1.0 * u.x(), 1.6 * u.y(), 2.3 * u.z()) + Vec3(0.3, -0.2, 0.5) * (u.x() > 0 ? 1.0 : 0.0);
+    bool far = true;
+    for (const auto& q : out) far = far && (q - p).norm() > 0.25;
+    if (far) out.push_back(p);
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST(RpyMobility, FarFieldIsTheOseenTensor) {
+  const Vec3 r(30.0, -40.0, 120.0);
+  const Mat3 oseen = (Mat3::Identity() + r * r.transpose() / r.squaredNorm()) / (8.0 * M_PI * r.norm());
+  EXPECT_LT((rpy_mobility(r, 0.1) - oseen).norm() / oseen.norm(), 1e-6);
+}
+
+TEST(RpyMobility, IsContinuousAtContactAndSelfAtZeroSeparation) {
+  const double a = 0.3;
+  const Vec3 dir = Vec3(1.0, 2.0, -0.5).normalized();
+  const Mat3 inside = rpy_mobility(dir * (2.0 * a * (1.0 - 1e-12)), a);
+  const Mat3 outside = rpy_mobility(dir * (2.0 * a * (1.0 + 1e-12)), a);
+  EXPECT_LT((inside - outside).norm(), 1e-9);
+  EXPECT_LT((rpy_mobility(Vec3::Zero(), a) - Mat3::Identity() / (6.0 * M_PI * a)).norm(), 1e-15);
+}
+
+TEST(RigidBodyResistance, SingleBeadIsAStokesSphereForTranslation) {
+  const auto r = rigid_body_resistance({{Vec3::Zero()}, 0.5});
+  EXPECT_NEAR(r.resistance(0, 0), 6.0 * M_PI * 0.5, 1e-12);
+  EXPECT_NEAR(r.resistance(2, 2), 6.0 * M_PI * 0.5, 1e-12);
+}
+
+TEST(RigidBodyResistance, MirrorBlocksEqualTheFullDenseSolve) {
+  // A cuboid shell (all three mirror planes, beads on the planes too) and a cylinder.
+  for (const auto& shape : {HydroShape::cuboid(Vec3(1.0, 2.0, 3.0)), HydroShape::cylinder(3.0, 1.0)}) {
+    const BeadModel model{shell_beads(shape, 0.12), 0.12};
+    ResistanceOptions plain;
+    plain.use_symmetry = false;
+    const auto full = rigid_body_resistance(model, plain);
+    const auto split = rigid_body_resistance(model);
+    EXPECT_EQ(full.symmetry_order, 1);
+    EXPECT_EQ(split.symmetry_order, 8);
+    EXPECT_LT(split.largest_block, full.largest_block / 4);
+    EXPECT_LT((split.resistance - full.resistance).norm() / full.resistance.norm(), 1e-10);
+  }
+}
+
+TEST(RigidBodyResistance, PartialSymmetryGroupMatchesTheFullSolve) {
+  // A cone-like stack: symmetric under x and y reflections only (group of order 4).
+  std::vector<Vec3> beads;
+  for (int k = 0; k < 6; ++k)
+    for (int i = 0; i < 8; ++i) {
+      const double rho = 0.4 + 0.15 * k, phi = 2.0 * M_PI * (i + 0.5 * (k % 2)) / 8.0;
+      beads.emplace_back(rho * std::cos(phi), rho * std::sin(phi), 0.3 * k);
+    }
+  ResistanceOptions plain;
+  plain.use_symmetry = false;
+  const auto full = rigid_body_resistance({beads, 0.1}, plain);
+  const auto split = rigid_body_resistance({beads, 0.1});
+  EXPECT_EQ(split.symmetry_order, 4);
+  EXPECT_LT((split.resistance - full.resistance).norm() / full.resistance.norm(), 1e-10);
+}
+
+TEST(CentreOfDiffusion, MovingTheReferencePointMatchesShiftedBeads) {
+  const auto beads = irregular_beads(120, 7);
+  const Mat6 D = rigid_body_resistance({beads, 0.1}).resistance.inverse();
+  const Vec3 p(0.4, -0.7, 1.1);
+  std::vector<Vec3> shifted;
+  for (const auto& b : beads) shifted.push_back(b - p);
+  const Mat6 D_shifted = rigid_body_resistance({shifted, 0.1}).resistance.inverse();
+  EXPECT_LT((move_reference_point(D, p) - D_shifted).norm() / D.norm(), 1e-10);
+}
+
+TEST(CentreOfDiffusion, CouplingIsSymmetricThereAndASymmetricBodyIsRecovered) {
+  const auto beads = irregular_beads(120, 11);
+  const Mat6 D = rigid_body_resistance({beads, 0.1}).resistance.inverse();
+  const Vec3 c = centre_of_diffusion(D);
+  const Mat3 coupling = move_reference_point(D, c).topRightCorner<3, 3>();
+  EXPECT_LT((coupling - coupling.transpose()).norm(), 1e-12 * D.norm());
+
+  // A spheroid shell displaced by d has its centre of diffusion at d.
+  const Vec3 d(0.3, -0.5, 0.8);
+  std::vector<Vec3> moved;
+  for (const auto& b : shell_beads(HydroShape::ellipsoid(Vec3(1.0, 1.0, 2.0)), 0.15)) moved.push_back(b + d);
+  const Mat6 Dm = rigid_body_resistance({moved, 0.15}).resistance.inverse();
+  EXPECT_LT((centre_of_diffusion(Dm) - d).norm(), 1e-9);
+  EXPECT_LT(relative_coupling(move_reference_point(Dm, d)), 1e-9);
+}
+
+TEST(ShellSurface, BeadsLieOnTheSurfaceAndKeepTheMirrorSymmetry) {
+  const std::vector<HydroShape> shapes{HydroShape::sphere(2.0), HydroShape::ellipsoid(Vec3(0.5, 1.0, 3.0)),
+                                       HydroShape::cylinder(4.0, 1.0), HydroShape::spherocylinder(3.0, 1.0),
+                                       HydroShape::cuboid(Vec3(1.0, 3.4641, 12.0)),
+                                       HydroShape::sphere_union({Vec3(0, 0, -0.6), Vec3(0, 0, 0), Vec3(0, 0, 0.6)}, {0.5, 0.5, 0.5})};
+  for (const auto& s : shapes) {
+    const auto beads = shell_beads(s, 0.1);
+    ASSERT_GT(beads.size(), 50u);
+    for (const auto& b : beads) ASSERT_TRUE(on_surface(s, b, 1e-9)) << b.transpose();
+    // Nearest-neighbour spacing ≈ 2σ_b: no bead is isolated and none coincide.
+    for (std::size_t i = 0; i < beads.size(); i += 7) {
+      double nearest = 1e9;
+      for (std::size_t j = 0; j < beads.size(); ++j)
+        if (j != i) nearest = std::min(nearest, (beads[i] - beads[j]).norm());
+      EXPECT_GT(nearest, 0.02);
+      EXPECT_LT(nearest, 0.4);
+    }
+    if (s.kind != HydroShapeKind::Ellipsoid || s.semi_axes.x() == s.semi_axes.y())
+      EXPECT_EQ(find_mirror_symmetry(beads, 1e-9).operations.size(), 8u);
+  }
+}
+
+TEST(DiffusionTensor, SphereMatchesStokesEinsteinAndDebyeWithinHalfAPercent) {
+  const auto r = compute_diffusion_tensor(HydroShape::sphere(1.0), choose_bead_radii(HydroShape::sphere(1.0), {5, 3000, 2.0}));
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_LT(relative_difference(r.D_trans()[a], theory::stokes_einstein_diffusion(0.5)), 0.005);
+    EXPECT_LT(relative_difference(r.D_rot()[a], theory::stokes_einstein_debye_rotational_diffusion(0.5)), 0.005);
+  }
+  EXPECT_LT(r.relative_coupling, 1e-8);
+  EXPECT_LT(r.relative_error.maxCoeff(), 0.005);
+  // The shells converge towards the answer from below: friction falls with the bead radius.
+  for (std::size_t k = 1; k < r.shells.size(); ++k) EXPECT_GT(r.shells[k].D_trans_component(0), r.shells[k - 1].D_trans_component(0));
+}
+
+TEST(DiffusionTensor, ProlateSpheroidMatchesPerrin) {
+  const double phi = 3.0, a = std::pow(phi, 2.0 / 3.0), c = std::pow(phi, -1.0 / 3.0);
+  const HydroShape s = HydroShape::ellipsoid(Vec3(c, c, a));
+  const auto r = compute_diffusion_tensor(s, choose_bead_radii(s, {5, 3000, 2.0}));
+  const auto exact = theory::ellipsoid_diffusion(c, c, a);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_LT(relative_difference(r.D_trans()[k], exact.D_trans[static_cast<std::size_t>(k)]), 0.01) << k;
+    EXPECT_LT(relative_difference(r.D_rot()[k], exact.D_rot[static_cast<std::size_t>(k)]), 0.02) << k;
+  }
+}
+
+TEST(Extrapolation, RecoversALineAndNeedsThreeRadii) {
+  const auto e = extrapolate_to_zero_size({0.1, 0.2, 0.3, 0.4}, {1.5, 2.0, 2.5, 3.0});
+  EXPECT_NEAR(e.linear, 1.0, 1e-12);
+  EXPECT_NEAR(e.slope, 5.0, 1e-12);
+  EXPECT_NEAR(e.quadratic, 1.0, 1e-10);
+  EXPECT_THROW(extrapolate_to_zero_size({0.1, 0.2, 0.2}, {1, 2, 2}), InputError);
+}
+
+TEST(ShellSeriesChoice, RefusesTooFewBeadsAndSnapsCuboidRadii) {
+  const HydroShape board = HydroShape::cuboid(Vec3(1.0, 8.0, 12.0));
+  EXPECT_THROW(choose_bead_radii(board, {5, 200, 2.0}), InputError);
+  const auto radii = choose_bead_radii(board, {4, 12000, 2.0});
+  ASSERT_EQ(radii.size(), 4u);
+  for (double s : radii) EXPECT_NEAR(1.0 / (2.0 * s), std::round(1.0 / (2.0 * s)), 1e-9);  // σ_b = T/(2n)
+  EXPECT_LE(radii.front(), 0.25);
+}
+
+class SpeciesFile : public anisodyn::testing_support::ScratchDirTest {
+ protected:
+  SpeciesFile() : ScratchDirTest("species-file") {}
+  nlohmann::json document() const {
+    return {{"format", "anisodyn-species"}, {"version", 1},
+            {"species", {{{"name", "board_W1"}, {"shape", {{"type", "cuboid"}, {"edges", {1, 1, 12}}}},
+                          {"D_trans", {0.02, 0.02, 0.03}}, {"D_rot", {0.001, 0.001, 0.02}}}}}};
+  }
+};
+
+TEST_F(SpeciesFile, RoundTripsThroughJsonAndHdf5) {
+  for (const std::string name : {"s.json", "s.h5"}) {
+    io::write_species_file(file(name), document());
+    EXPECT_EQ(io::read_species_file(file(name)), document()) << name;
+  }
+}
+
+TEST_F(SpeciesFile, FeedsASpeciesDefinitionAndChecksItsShape) {
+  io::write_species_file(file("s.h5"), document());
+  const nlohmann::json good{{"name", "board"}, {"diffusion_from", {{"file", file("s.h5")}, {"species", "board_W1"}}}};
+  const Species s = parse_species(io::ConfigNode(good, "cfg.json"));
+  EXPECT_EQ(s.shape.kind, ShapeKind::Cuboid);
+  EXPECT_DOUBLE_EQ(s.shape.edges.z(), 12.0);
+  EXPECT_DOUBLE_EQ(s.D_rot.z(), 0.02);
+
+  nlohmann::json wrong_shape = good;
+  wrong_shape["shape"] = {{"type", "cuboid"}, {"edges", {1, 8, 12}}};
+  EXPECT_THROW(parse_species(io::ConfigNode(wrong_shape, "cfg.json")), InputError);
+  nlohmann::json missing = good;
+  missing["diffusion_from"]["species"] = "board_W9";
+  EXPECT_THROW(parse_species(io::ConfigNode(missing, "cfg.json")), InputError);
+  nlohmann::json both = good;
+  both["D_trans"] = {1, 1, 1};
+  EXPECT_THROW(parse_species(io::ConfigNode(both, "cfg.json")), InputError);
+}
