@@ -3,8 +3,8 @@
 //   (a) 1000 boards 12×3.46×1 at φ = 0.20 plus one pulled tracer (d = 1, Pe = 1, δt_s = 10⁻²);
 //   (b) 2000 boards 12×8×1 at η = 0.34 (aligned start, N_U⁻), δt = 10⁻²;
 //   (c) 1500 dipolar cubes at η = 0.02, field on (γ = 13, Ewald at relative accuracy 10⁻⁵), δt = 10⁻³.
-// The board D tensors of (a) are placeholders of the right magnitude until the bead-model values of
-// W* = 3.46 exist (issue 4); (b) and (c) use the published values (spec 10 §8).
+// The board D tensors of (a) are the bead-model values of manifests/data/boards_L12.species.json
+// (anisodyn-hydro); (b) and (c) use the published values (spec 10 §8).
 #include <benchmark/benchmark.h>
 
 #include "anisodyn/dmc/dmc_engine.hpp"
@@ -34,7 +34,7 @@ void run_cycles(benchmark::State& bs, State state, const std::vector<double>& dt
 void BM_DmcBoards1000WithTracer(benchmark::State& bs) {
   static const State prepared = [] {
     State s = bench::cached_melted_lattice("cuboids_12x3.46x1_N1000_eta0.20",
-                                           Species{"board", Shape::cuboid(1.0, 3.4641, 12.0), 1.0, Vec3(0.017, 0.019, 0.025), Vec3(7e-4, 8e-4, 6e-3)},
+                                           Species{"board", Shape::cuboid(1.0, 3.4641, 12.0), 1.0, Vec3(0.01447, 0.01676, 0.020117), Vec3(6.1655e-4, 5.5102e-4, 2.7965e-3)},
                                            1000, 0.20, 20000);
     s.species.push_back(Species{"tracer", Shape::sphere(1.0), 1.0, Vec3::Constant(1.0 / (3.0 * M_PI)), Vec3::Zero()});
     PlacementRequest req;

@@ -61,8 +61,11 @@ def validate(m, bin_dir):
         if not isinstance(st, dict):
             fail(p, "an object", st)
         for k in st:
-            if k not in {"name", "tool", "params", "inputs", "description"}:
-                fail(f"{p}.{k}", "one of name, tool, params, inputs, description (unknown key)")
+            if k not in {"name", "tool", "params", "inputs", "description", "output"}:
+                fail(f"{p}.{k}", "one of name, tool, params, inputs, description, output (unknown key)")
+        out = st.get("output", "x.h5")
+        if not isinstance(out, str) or not out or os.sep in out or out.startswith("."):
+            fail(f"{p}.output", "a plain file name for the stage's output (default <name>.h5)", out)
         if not isinstance(st.get("name"), str) or not st["name"]:
             fail(f"{p}.name", "a stage name", st.get("name"))
         if st["name"] in seen:
@@ -117,7 +120,7 @@ def main():
         name = st["name"]
         params = merge(manifest.get("defaults", {}), st.get("params", {}))
         cfg_path = os.path.join(out_dir, f"{name}.json")
-        out_path = os.path.join(out_dir, f"{name}.h5")
+        out_path = os.path.join(out_dir, st.get("output", f"{name}.h5"))
         inputs = [outputs[i] for i in st.get("inputs", [])]
         stamp = {"tool": st["tool"], "params": params, "inputs": {p: sha256(p) for p in inputs}}
         stamp_path = os.path.join(out_dir, f".{name}.stamp.json")
