@@ -111,7 +111,11 @@ def main():
         print(f"anisodyn-run: error: {args.manifest}: {e}", file=sys.stderr)
         return 2
 
-    out_dir = os.path.join(args.results, manifest["study"])
+    # Tools run in the repository root, so data paths in manifests ("manifests/data/…") resolve the
+    # same wherever the runner is started; every path handed to them is absolute.
+    repo_root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    args.bin = os.path.abspath(args.bin)
+    out_dir = os.path.abspath(os.path.join(args.results, manifest["study"]))
     os.makedirs(out_dir, exist_ok=True)
     outputs = {}
     t_start = time.time()
@@ -138,7 +142,7 @@ def main():
         print(f"[{k}/{len(stages)}] {name}: {' '.join(cmd)}", file=sys.stderr)
         t0 = time.time()
         with open(os.path.join(out_dir, f"{name}.log"), "w") as log:
-            rc = subprocess.call(cmd, stdout=log)
+            rc = subprocess.call(cmd, stdout=log, cwd=repo_root)
         if rc != 0:
             print(f"anisodyn-run: stage '{name}' failed with exit code {rc} (stdout in {out_dir}/{name}.log)", file=sys.stderr)
             return rc
