@@ -2,10 +2,7 @@
 // (RPY mobility with overlap correction, 6×6 resistance, centre of diffusion, extrapolation to zero
 // bead size). Writes a species file (JSON, or HDF5 for a .h5 output) that anisodyn-config and
 // anisodyn-dmc read through "diffusion_from". See docs/hydro.md.
-#include <unistd.h>
-
 #include <cstdio>
-#include <iostream>
 
 #include "anisodyn/core/error.hpp"
 #include "anisodyn/hydro/diffusion_tensor.hpp"

@@ -9,6 +9,7 @@
 #include "anisodyn/core/error.hpp"
 #include "anisodyn/io/atomic_file.hpp"
 #include "anisodyn/io/json_config.hpp"
+#include "hdf5_support.hpp"
 
 namespace anisodyn::io {
 
@@ -16,22 +17,15 @@ namespace {
 
 constexpr const char* kDocumentDataset = "/species_file";
 
-/// Closes an HDF5 object when the scope ends.
-struct H5Closer {
-  hid_t id;
-  herr_t (*close)(hid_t);
-  ~H5Closer() { if (id >= 0) close(id); }
-};
-
 void require(bool ok, const std::string& path, const std::string& what) {
   if (!ok) throw RuntimeFailure(path + ": HDF5 error while " + what);
 }
 
 void write_doubles(hid_t parent, const std::string& name, const std::vector<double>& values,
                    const std::vector<hsize_t>& shape, const std::string& path) {
-  H5Closer space{H5Screate_simple(static_cast<int>(shape.size()), shape.data(), nullptr), H5Sclose};
-  H5Closer ds{H5Dcreate2(parent, name.c_str(), H5T_IEEE_F64LE, space.id, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose};
-  require(ds.id >= 0 && H5Dwrite(ds.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) >= 0, path,
+  detail::Handle space(H5Screate_simple(static_cast<int>(shape.size()), shape.data(), nullptr), H5Sclose);
+  detail::Handle ds(H5Dcreate2(parent, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
+  require(ds.get() >= 0 && H5Dwrite(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) >= 0, path,
           "writing " + name);
 }
 
@@ -44,14 +38,14 @@ std::vector<double> flat(const nlohmann::json& j) {
 
 /// Numeric mirror of one species entry for h5py users; the JSON document stays authoritative.
 void write_species_group(hid_t species_root, const nlohmann::json& s, const std::string& path) {
-  H5Closer g{H5Gcreate2(species_root, s.at("name").get<std::string>().c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose};
-  require(g.id >= 0, path, "creating the group of species " + s.at("name").get<std::string>());
-  write_doubles(g.id, "D_trans", flat(s.at("D_trans")), {3}, path);
-  write_doubles(g.id, "D_rot", flat(s.at("D_rot")), {3}, path);
+  detail::Handle g(H5Gcreate2(species_root, s.at("name").get<std::string>().c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
+  require(g.get() >= 0, path, "creating the group of species " + s.at("name").get<std::string>());
+  write_doubles(g.get(), "D_trans", flat(s.at("D_trans")), {3}, path);
+  write_doubles(g.get(), "D_rot", flat(s.at("D_rot")), {3}, path);
   if (!s.contains("hydro")) return;
   const auto& h = s.at("hydro");
-  write_doubles(g.id, "diffusion_tensor", flat(h.at("diffusion_tensor")), {6, 6}, path);
-  write_doubles(g.id, "centre_of_diffusion", flat(h.at("centre_of_diffusion")), {3}, path);
+  write_doubles(g.get(), "diffusion_tensor", flat(h.at("diffusion_tensor")), {6, 6}, path);
+  write_doubles(g.get(), "centre_of_diffusion", flat(h.at("centre_of_diffusion")), {3}, path);
   const auto& shells = h.at("shells");
   std::vector<double> sigma, beads, dt, dr;
   for (const auto& sh : shells) {
@@ -61,40 +55,36 @@ void write_species_group(hid_t species_root, const nlohmann::json& s, const std:
     for (double x : flat(sh.at("D_rot"))) dr.push_back(x);
   }
   const auto n = static_cast<hsize_t>(shells.size());
-  write_doubles(g.id, "shell_sigma_b", sigma, {n}, path);
-  write_doubles(g.id, "shell_beads", beads, {n}, path);
-  write_doubles(g.id, "shell_D_trans", dt, {n, 3}, path);
-  write_doubles(g.id, "shell_D_rot", dr, {n, 3}, path);
+  write_doubles(g.get(), "shell_sigma_b", sigma, {n}, path);
+  write_doubles(g.get(), "shell_beads", beads, {n}, path);
+  write_doubles(g.get(), "shell_D_trans", dt, {n, 3}, path);
+  write_doubles(g.get(), "shell_D_rot", dr, {n, 3}, path);
 }
 
 void write_hdf5(const std::string& file, const nlohmann::json& doc) {
-  H5Closer f{H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose};
-  require(f.id >= 0, file, "creating the file");
+  detail::Handle f(H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+  require(f.get() >= 0, file, "creating the file");
   const std::string text = doc.dump(1);
-  H5Closer type{H5Tcopy(H5T_C_S1), H5Tclose};
-  H5Tset_size(type.id, text.size());
-  H5Closer space{H5Screate(H5S_SCALAR), H5Sclose};
-  H5Closer ds{H5Dcreate2(f.id, kDocumentDataset, type.id, space.id, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose};
-  require(ds.id >= 0 && H5Dwrite(ds.id, type.id, H5S_ALL, H5S_ALL, H5P_DEFAULT, text.data()) >= 0, file, "writing the document");
-  H5Closer root{H5Gcreate2(f.id, "/species", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose};
-  for (const auto& s : doc.at("species")) write_species_group(root.id, s, file);
+  detail::Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(type.get(), text.size());
+  detail::Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+  detail::Handle ds(H5Dcreate2(f.get(), kDocumentDataset, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
+  require(ds.get() >= 0 && H5Dwrite(ds.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, text.data()) >= 0, file, "writing the document");
+  detail::Handle root(H5Gcreate2(f.get(), "/species", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
+  for (const auto& s : doc.at("species")) write_species_group(root.get(), s, file);
 }
 
 std::string read_hdf5_document(const std::string& path) {
-  H5E_auto2_t func = nullptr;
-  void* data = nullptr;
-  H5Eget_auto2(H5E_DEFAULT, &func, &data);
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  struct Restore { H5E_auto2_t f; void* d; ~Restore() { H5Eset_auto2(H5E_DEFAULT, f, d); } } restore{func, data};
-  H5Closer f{H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose};
-  if (f.id < 0) throw InputError(path, "", "cannot open as HDF5");
-  H5Closer ds{H5Dopen2(f.id, kDocumentDataset, H5P_DEFAULT), H5Dclose};
-  if (ds.id < 0) throw InputError(path, "", std::string("not a species file: no dataset ") + kDocumentDataset);
-  H5Closer type{H5Dget_type(ds.id), H5Tclose};
-  std::string text(H5Tget_size(type.id), '\0');
-  H5Closer mem{H5Tcopy(H5T_C_S1), H5Tclose};
-  H5Tset_size(mem.id, text.size());
-  require(H5Dread(ds.id, mem.id, H5S_ALL, H5S_ALL, H5P_DEFAULT, text.data()) >= 0, path, "reading the document");
+  const detail::QuietHdf5 quiet;
+  detail::Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  if (f.get() < 0) throw InputError(path, "", "cannot open as HDF5");
+  detail::Handle ds(H5Dopen2(f.get(), kDocumentDataset, H5P_DEFAULT), H5Dclose);
+  if (ds.get() < 0) throw InputError(path, "", std::string("not a species file: no dataset ") + kDocumentDataset);
+  detail::Handle type(H5Dget_type(ds.get()), H5Tclose);
+  std::string text(H5Tget_size(type.get()), '\0');
+  detail::Handle mem(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(mem.get(), text.size());
+  require(H5Dread(ds.get(), mem.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, text.data()) >= 0, path, "reading the document");
   return text;
 }
 

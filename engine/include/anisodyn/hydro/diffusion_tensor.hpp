@@ -26,8 +26,6 @@ struct ShellSolution {
   Mat6 resistance = Mat6::Zero();  // about the centre of diffusion
   Mat6 diffusion = Mat6::Zero();   // about the centre of diffusion, k_BT = 1
   double seconds = 0.0;
-
-  double D_trans_component(int axis) const { return diffusion(axis, axis); }
 };
 
 struct DiffusionTensorResult {
