@@ -14,7 +14,7 @@
 #include "anisodyn/io/atomic_file.hpp"
 #include "anisodyn/io/json_config.hpp"
 #include "anisodyn/version.hpp"
-#include "hdf5_support.hpp"
+#include "anisodyn/io/hdf5_support.hpp"
 
 namespace anisodyn::io {
 namespace {
@@ -1146,6 +1146,50 @@ State H5mdReader::read_frame(std::ptrdiff_t index) const {
                                         " species)");
   }
   return s;
+}
+
+std::vector<double> H5mdReader::read_element_frames(const std::string& element, std::size_t& width) const {
+  QuietHdf5 quiet;
+  const Impl& m = *impl_;
+  const std::string hpath = std::string("/particles/") + kParticleGroup + "/" + element + "/value";
+  if (!m.exists(hpath)) m.bad(hpath, "missing required dataset (per-particle element '" + element + "')");
+  std::vector<hsize_t> d;
+  auto out = m.read_vector<double>(hpath, H5T_NATIVE_DOUBLE, &d);
+  if (d.size() != 3 || d[0] != m.frames || d[1] != m.n)
+    m.bad(hpath, "expected shape [" + std::to_string(m.frames) + ", " + std::to_string(m.n) + ", width], got " + dims_text(d));
+  width = d[2];
+  return out;
+}
+
+std::vector<std::int64_t> H5mdReader::read_integer_element_frames(const std::string& element) const {
+  QuietHdf5 quiet;
+  const Impl& m = *impl_;
+  const std::string hpath = std::string("/particles/") + kParticleGroup + "/" + element + "/value";
+  if (!m.exists(hpath)) m.bad(hpath, "missing required dataset (per-particle element '" + element + "')");
+  std::vector<hsize_t> d;
+  auto out = m.read_vector<std::int64_t>(hpath, H5T_NATIVE_INT64, &d);
+  if (d.size() != 2 || d[0] != m.frames || d[1] != m.n)
+    m.bad(hpath, "expected shape [" + std::to_string(m.frames) + ", " + std::to_string(m.n) + "], got " + dims_text(d));
+  return out;
+}
+
+std::vector<double> H5mdReader::box_edges_frames() const {
+  QuietHdf5 quiet;
+  const Impl& m = *impl_;
+  const std::string hpath = std::string("/particles/") + kParticleGroup + "/box/edges/value";
+  std::vector<hsize_t> d;
+  const auto raw = m.read_vector<double>(hpath, H5T_NATIVE_DOUBLE, &d);
+  const bool vector_form = d.size() == 2 && d[1] == 3;
+  const bool matrix_form = d.size() == 3 && d[1] == 3 && d[2] == 3;
+  if (!(vector_form || matrix_form) || d[0] < m.frames)
+    m.bad(hpath, "expected shape [" + std::to_string(m.frames) + ", 3] or [" + std::to_string(m.frames) + ", 3, 3], got " + dims_text(d));
+  std::vector<double> out(3 * m.frames);
+  for (std::size_t f = 0; f < m.frames; ++f)
+    for (int a = 0; a < 3; ++a) {
+      out[3 * f + a] = vector_form ? raw[3 * f + a] : raw[9 * f + 4 * a];
+      if (!(out[3 * f + a] > 0)) m.bad(hpath, "box edges must be positive (frame " + std::to_string(f) + ")");
+    }
+  return out;
 }
 
 std::vector<std::string> H5mdReader::particle_element_names() const {

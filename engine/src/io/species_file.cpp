@@ -9,7 +9,7 @@
 #include "anisodyn/core/error.hpp"
 #include "anisodyn/io/atomic_file.hpp"
 #include "anisodyn/io/json_config.hpp"
-#include "hdf5_support.hpp"
+#include "anisodyn/io/hdf5_support.hpp"
 
 namespace anisodyn::io {
 

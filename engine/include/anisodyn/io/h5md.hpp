@@ -130,6 +130,15 @@ class H5mdReader {
   std::vector<double> frame_times() const;
   SpeciesTable species() const;
 
+  /// Bulk reads for analysis (one HDF5 read each). All frames of a per-particle element
+  /// ("position", "image", "orientation" or an extra element) converted to float64, row-major
+  /// [F × N × width]; `width` is returned. A missing element or a bad shape → InputError.
+  std::vector<double> read_element_frames(const std::string& element, std::size_t& width) const;
+  /// All frames of an integer per-particle element ("species", "id"), [F × N].
+  std::vector<std::int64_t> read_integer_element_frames(const std::string& element) const;
+  /// Box edges of every frame (vector or diagonal-matrix form), [F × 3].
+  std::vector<double> box_edges_frames() const;
+
   bool has_observable(const std::string& name) const;
   std::vector<std::string> observable_names() const;
   struct Series {

@@ -1,5 +1,5 @@
 #pragma once
-// HDF5 plumbing shared by the io module's writers and readers (private to engine/src/io).
+// HDF5 plumbing shared by the HDF5 writers and readers of the io module and the analysis library.
 #include <hdf5.h>
 
 namespace anisodyn::io::detail {

@@ -1,0 +1,36 @@
+#pragma once
+// Lags and time origins for correlation functions over frames that are spaced linearly or
+// logarithmically (spec 50 §0). Each lag class is a set of frame pairs (origin, origin + lag):
+//   - uniform frames: lag classes are whole frame lags k on a log-thinned grid (every lag below
+//     `per_decade`, then `per_decade` lags per decade), with every available origin;
+//   - other spacings (DMC log frames, mixed schedules): every pair (i < j) is put in a log bin of
+//     its lag t_j − t_i, `per_decade` bins per decade; the class's lag is the mean over its pairs.
+// The origins of a class can be thinned to at most `max_origins` (evenly spread).
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace anisodyn::analysis {
+
+struct LagClass {
+  double lag = 0.0;  // mean lag time of the pairs
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;  // (origin frame, later frame)
+};
+
+struct LagGrid {
+  bool uniform = false;
+  double frame_spacing = 0.0;  // for uniform frames
+  std::vector<LagClass> classes;  // ascending lag
+};
+
+/// True if consecutive time differences agree within rel_tol.
+bool uniformly_spaced(const std::vector<double>& time, double rel_tol = 1e-6);
+
+/// Whole lags 1 … max_lag on a log grid: every lag up to per_decade, then ~per_decade per decade,
+/// always including max_lag. per_decade ≤ 0 → every lag.
+std::vector<std::size_t> log_spaced_lags(std::size_t max_lag, double per_decade);
+
+/// Lag classes for frame times `time`. max_origins = 0 keeps every origin.
+LagGrid make_lag_grid(const std::vector<double>& time, double per_decade, std::size_t max_origins = 0);
+
+}  // namespace anisodyn::analysis

@@ -1,0 +1,192 @@
+#include "anisodyn/analysis/analysis_output.hpp"
+
+#include <hdf5.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <set>
+
+#include "anisodyn/core/error.hpp"
+#include "anisodyn/io/atomic_file.hpp"
+#include "anisodyn/io/hdf5_support.hpp"
+#include "anisodyn/version.hpp"
+
+namespace anisodyn::analysis {
+
+using io::detail::Handle;
+using io::detail::QuietHdf5;
+
+Table& Table::add(std::string column, std::string units, std::string def, std::vector<double> values) {
+  if (!columns.empty() && values.size() != rows())
+    throw RuntimeFailure("table '" + name + "': column '" + column + "' has " + std::to_string(values.size()) +
+                         " rows, the table " + std::to_string(rows()));
+  columns.push_back({std::move(column), std::move(units), std::move(def), std::move(values)});
+  return *this;
+}
+
+AnalysisOutput::AnalysisOutput(std::string path, nlohmann::json parameters, nlohmann::json provenance)
+    : path_(std::move(path)), parameters_(std::move(parameters)), provenance_(std::move(provenance)) {}
+
+Table& AnalysisOutput::table(const std::string& name, const std::string& definition) {
+  for (auto& t : tables_)
+    if (t.name == name) return t;
+  tables_.push_back({name, definition, {}});
+  return tables_.back();
+}
+
+void AnalysisOutput::scalar(Scalar s) { scalars_.push_back(std::move(s)); }
+
+std::string AnalysisOutput::csv_path(const std::string& table) const {
+  std::string stem = path_;
+  for (const char* ext : {".h5", ".hdf5"}) {
+    const std::string e = ext;
+    if (stem.size() > e.size() && stem.compare(stem.size() - e.size(), e.size(), e) == 0) {
+      stem.resize(stem.size() - e.size());
+      break;
+    }
+  }
+  return stem + "." + table + ".csv";
+}
+
+namespace {
+
+void check(herr_t rc, const std::string& what) {
+  if (rc < 0) throw RuntimeFailure("HDF5 error while writing " + what);
+}
+
+Handle string_type() {
+  hid_t t = H5Tcopy(H5T_C_S1);
+  H5Tset_size(t, H5T_VARIABLE);
+  H5Tset_cset(t, H5T_CSET_UTF8);
+  return Handle(t, H5Tclose);
+}
+
+void string_attribute(hid_t obj, const std::string& key, const std::string& value) {
+  Handle type = string_type();
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+  Handle attr(H5Acreate2(obj, key.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+  if (!attr.valid()) throw RuntimeFailure("HDF5 error while creating attribute " + key);
+  const char* p = value.c_str();
+  check(H5Awrite(attr.get(), type.get(), &p), "attribute " + key);
+}
+
+void string_dataset(hid_t parent, const std::string& name, const std::string& value) {
+  Handle type = string_type();
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+  Handle ds(H5Dcreate2(parent, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
+  if (!ds.valid()) throw RuntimeFailure("HDF5 error while creating dataset " + name);
+  const char* p = value.c_str();
+  check(H5Dwrite(ds.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, &p), name);
+}
+
+Handle double_dataset(hid_t parent, const std::string& name, const std::vector<double>& values) {
+  const hsize_t n = values.size();
+  Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose);
+  Handle ds(H5Dcreate2(parent, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
+  if (!ds.valid()) throw RuntimeFailure("HDF5 error while creating dataset " + name);
+  if (n) check(H5Dwrite(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), name);
+  return ds;
+}
+
+Handle group(hid_t parent, const std::string& name) {
+  Handle g(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
+  if (!g.valid()) throw RuntimeFailure("HDF5 error while creating group " + name);
+  return g;
+}
+
+std::string csv_number(double v) {
+  if (std::isnan(v)) return "nan";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  return buf;
+}
+
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+void write_table_csv(const Table& t, const std::string& path) {
+  std::ofstream f(path);
+  if (!f) throw RuntimeFailure("cannot write " + path);
+  f << "# " << t.definition << "\n";
+  for (const auto& c : t.columns) f << "# " << c.name << " [" << c.units << "]: " << c.definition << "\n";
+  for (std::size_t k = 0; k < t.columns.size(); ++k) f << (k ? "," : "") << csv_field(t.columns[k].name);
+  f << "\n";
+  for (std::size_t r = 0; r < t.rows(); ++r) {
+    for (std::size_t k = 0; k < t.columns.size(); ++k) f << (k ? "," : "") << csv_number(t.columns[k].values[r]);
+    f << "\n";
+  }
+  f.close();
+  if (!f) throw RuntimeFailure("cannot write " + path);
+}
+
+void write_scalars_csv(const std::vector<Scalar>& scalars, const std::string& path) {
+  std::ofstream f(path);
+  if (!f) throw RuntimeFailure("cannot write " + path);
+  f << "name,value,standard_error,units,definition,details\n";
+  for (const auto& s : scalars)
+    f << csv_field(s.name) << "," << csv_number(s.value) << "," << csv_number(s.error) << "," << csv_field(s.units) << ","
+      << csv_field(s.definition) << "," << csv_field(s.details.dump()) << "\n";
+  f.close();
+  if (!f) throw RuntimeFailure("cannot write " + path);
+}
+
+}  // namespace
+
+void AnalysisOutput::write(bool csv) const {
+  QuietHdf5 quiet;
+  std::vector<io::AtomicOutput> outputs;
+  outputs.emplace_back(path_);
+  {
+    Handle file(H5Fcreate(outputs.back().partial_path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+    if (!file.valid()) throw RuntimeFailure("cannot create " + outputs.back().partial_path());
+    const hid_t f = file.get();
+    string_attribute(f, "tool", provenance_.value("tool", std::string()));
+    string_attribute(f, "tool_version", std::string(kVersion) + " (" + kGitRevision + ")");
+    string_attribute(f, "git_revision", kGitRevision);
+    string_attribute(f, "created_utc", provenance_.value("created_utc", std::string()));
+    string_attribute(f, "inputs", provenance_.value("inputs", nlohmann::json::array()).dump());
+    string_dataset(f, "parameters", parameters_.dump(2));
+    string_dataset(f, "provenance", provenance_.dump(2));
+    std::set<std::string> names;
+    for (const auto& t : tables_) {
+      if (!names.insert(t.name).second || t.name == "scalars") throw RuntimeFailure("duplicate table name " + t.name);
+      Handle g = group(f, t.name);
+      string_attribute(g.get(), "definition", t.definition);
+      for (const auto& c : t.columns) {
+        Handle ds = double_dataset(g.get(), c.name, c.values);
+        string_attribute(ds.get(), "units", c.units);
+        string_attribute(ds.get(), "definition", c.definition);
+      }
+    }
+    if (!scalars_.empty()) {
+      Handle g = group(f, "scalars");
+      string_attribute(g.get(), "definition", "scalar results: value and standard error");
+      for (const auto& s : scalars_) {
+        Handle ds = double_dataset(g.get(), s.name, {s.value, s.error});
+        string_attribute(ds.get(), "units", s.units);
+        string_attribute(ds.get(), "definition", s.definition);
+        string_attribute(ds.get(), "details", s.details.dump());
+      }
+    }
+    if (!file.close()) throw RuntimeFailure("cannot close " + outputs.back().partial_path());
+  }
+  if (csv) {
+    for (const auto& t : tables_) {
+      outputs.emplace_back(csv_path(t.name));
+      write_table_csv(t, outputs.back().partial_path());
+    }
+    if (!scalars_.empty()) {
+      outputs.emplace_back(csv_path("scalars"));
+      write_scalars_csv(scalars_, outputs.back().partial_path());
+    }
+  }
+  for (auto& o : outputs) o.commit();
+}
+
+}  // namespace anisodyn::analysis

@@ -1,0 +1,84 @@
+#include "anisodyn/analysis/lag_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace anisodyn::analysis {
+
+bool uniformly_spaced(const std::vector<double>& time, double rel_tol) {
+  if (time.size() < 3) return true;
+  const double dt = (time.back() - time.front()) / static_cast<double>(time.size() - 1);
+  for (std::size_t f = 1; f < time.size(); ++f)
+    if (std::abs(time[f] - time[f - 1] - dt) > rel_tol * dt) return false;
+  return true;
+}
+
+std::vector<std::size_t> log_spaced_lags(std::size_t max_lag, double per_decade) {
+  std::vector<std::size_t> lags;
+  if (max_lag == 0) return lags;
+  if (per_decade <= 0) {
+    for (std::size_t k = 1; k <= max_lag; ++k) lags.push_back(k);
+    return lags;
+  }
+  for (double e = 0;; e += 1.0) {
+    const auto k = static_cast<std::size_t>(std::llround(std::pow(10.0, e / per_decade)));
+    if (k > max_lag) break;
+    if (lags.empty() || k > lags.back()) lags.push_back(k);
+  }
+  if (lags.back() != max_lag) lags.push_back(max_lag);
+  return lags;
+}
+
+namespace {
+
+/// Keeps at most `keep` elements, evenly spread, always including the first.
+void thin(std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs, std::size_t keep) {
+  if (keep == 0 || pairs.size() <= keep) return;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
+  out.reserve(keep);
+  for (std::size_t k = 0; k < keep; ++k) out.push_back(pairs[k * pairs.size() / keep]);
+  pairs.swap(out);
+}
+
+}  // namespace
+
+LagGrid make_lag_grid(const std::vector<double>& time, double per_decade, std::size_t max_origins) {
+  LagGrid grid;
+  const std::size_t frames = time.size();
+  if (frames < 2) return grid;
+  grid.uniform = uniformly_spaced(time);
+  if (grid.uniform) {
+    grid.frame_spacing = (time.back() - time.front()) / static_cast<double>(frames - 1);
+    for (std::size_t k : log_spaced_lags(frames - 1, per_decade)) {
+      LagClass c;
+      double sum = 0;
+      for (std::size_t i = 0; i + k < frames; ++i) {
+        c.pairs.emplace_back(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(i + k));
+        sum += time[i + k] - time[i];
+      }
+      c.lag = sum / static_cast<double>(c.pairs.size());
+      thin(c.pairs, max_origins);
+      grid.classes.push_back(std::move(c));
+    }
+    return grid;
+  }
+  const double bins = per_decade > 0 ? per_decade : 20.0;
+  std::map<long, LagClass> by_bin;
+  std::map<long, double> sums;
+  for (std::size_t i = 0; i < frames; ++i)
+    for (std::size_t j = i + 1; j < frames; ++j) {
+      const double lag = time[j] - time[i];
+      const long b = std::lround(std::floor(std::log10(lag) * bins + 1e-9));
+      by_bin[b].pairs.emplace_back(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j));
+      sums[b] += lag;
+    }
+  for (auto& [b, c] : by_bin) {
+    c.lag = sums[b] / static_cast<double>(c.pairs.size());
+    thin(c.pairs, max_origins);
+    grid.classes.push_back(std::move(c));
+  }
+  return grid;
+}
+
+}  // namespace anisodyn::analysis

@@ -1,0 +1,54 @@
+#include "anisodyn/analysis/stage.hpp"
+
+#include <cstdio>
+
+#include "anisodyn/core/error.hpp"
+#include "anisodyn/io/atomic_file.hpp"
+#include "anisodyn/io/provenance.hpp"
+
+namespace anisodyn::analysis {
+
+void StageRun::report_replica(std::size_t k, const std::string& path) const {
+  if (opt.quiet) return;
+  std::fprintf(stderr, "%s: replica %zu/%zu: %s\n", opt.tool.c_str(), k + 1, inputs.size(), path.c_str());
+  std::fflush(stderr);
+}
+
+std::vector<double> StageRun::each_replica(const TrajectoryNeeds& needs,
+                                           const std::function<void(const Trajectory&, std::size_t)>& fn,
+                                           double time_tolerance) const {
+  return for_each_replica(
+      inputs, needs,
+      [&](const Trajectory& t, std::size_t k) {
+        report_replica(k, t.path);
+        fn(t, k);
+      },
+      time_tolerance);
+}
+
+void StageRun::fail(const std::string& key, const std::string& problem) const {
+  throw InputError(opt.config_name(), key, problem);
+}
+
+int run_analysis_stage(int argc, char** argv, const io::ToolInfo& info, const std::function<void(StageRun&)>& body) {
+  return io::run_tool(argc, argv, info, [&](io::CommonOptions& opt) {
+    if (opt.output.empty()) throw InputError("--output", "", "expected an output file (.h5); CSV files are written beside it");
+    io::ConfigNode cfg(opt.config, opt.config_name());
+    std::vector<std::string> patterns = opt.inputs;
+    if (cfg.has("inputs"))
+      for (auto& p : cfg.strings("inputs")) patterns.push_back(p);
+    else
+      cfg.mark_used("inputs");
+    const bool csv = cfg.boolean("csv", true);
+    const std::vector<std::string> inputs = expand_inputs(patterns, opt.inputs.empty() ? opt.config_name() : "--input");
+    io::check_output_writable(opt.output);
+    AnalysisOutput out(opt.output, opt.config, nlohmann::json::object());
+    StageRun run{opt, cfg, inputs, out};
+    body(run);
+    out.set_provenance(io::make_provenance(info.name, opt.argv, inputs));
+    out.write(csv);
+    if (!opt.quiet) std::fprintf(stderr, "%s: wrote %s\n", info.name.c_str(), opt.output.c_str());
+  });
+}
+
+}  // namespace anisodyn::analysis
