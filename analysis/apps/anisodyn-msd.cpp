@@ -71,6 +71,7 @@ int main(int argc, char** argv) {
     TrajectoryNeeds needs;
     needs.positions = true;
     needs.orientations = settings.reference == MsdReference::Director || settings.reference == MsdReference::ParticleAxis || settings.body_frame;
+    if (settings.body_frame) needs.optional_elements = {"body_displacement"};
     run.each_replica(needs, [&](const Trajectory& t, std::size_t) {
       for (std::size_t k = 0; k < species.size(); ++k) analyses[k].accumulate(t, species[k].index);
     });

@@ -81,4 +81,14 @@ LagGrid make_lag_grid(const std::vector<double>& time, double per_decade, std::s
   return grid;
 }
 
+std::size_t nearest_lag_class(const LagGrid& grid, double t) {
+  std::size_t best = 0;
+  double dist = INFINITY;
+  for (std::size_t c = 0; c < grid.classes.size(); ++c) {
+    const double d = std::abs(std::log(grid.classes[c].lag / t));
+    if (d < dist) { dist = d; best = c; }
+  }
+  return best;
+}
+
 }  // namespace anisodyn::analysis

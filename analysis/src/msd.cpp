@@ -120,7 +120,7 @@ void MsdAnalysis::accumulate(const Trajectory& t, int species_index) {
   }
   const std::vector<std::size_t> members = t.members(species_index);
   const std::size_t nc = grid_.classes.size(), ncomp = names_.size(), F = t.frames, N = t.particles;
-  const std::size_t blocks = replicas_ == 1 ? std::max<std::size_t>(s_.single_replica_blocks, 1) : 1;
+  const std::size_t blocks = error_blocks(replicas_, std::max<std::size_t>(s_.single_replica_blocks, 1));
 
   Vec3 e = s_.direction;
   if (s_.reference == MsdReference::Director) {
@@ -155,7 +155,7 @@ void MsdAnalysis::accumulate(const Trajectory& t, int species_index) {
     double lag_sum = 0;
     for (const auto& [i0, j0] : lc.pairs) {
       lag_sum += t.time[j0] - t.time[i0];
-      const std::size_t b = std::min(blocks - 1, static_cast<std::size_t>(i0) * blocks / F);
+      const std::size_t b = origin_block(i0, F, blocks);
       double acc[18] = {0};
       const double* ri = &t.position[3 * i0 * N];
       const double* rj = &t.position[3 * j0 * N];

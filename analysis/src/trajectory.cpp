@@ -105,6 +105,12 @@ Trajectory load_trajectory(const std::string& path, const TrajectoryNeeds& needs
     auto data = r.read_element_frames(name, width);
     t.elements.emplace(name, std::make_pair(width, std::move(data)));
   }
+  const auto present = r.particle_element_names();
+  for (const auto& name : needs.optional_elements) {
+    if (std::find(present.begin(), present.end(), name) == present.end() || t.elements.count(name)) continue;
+    auto data = r.read_element_frames(name, width);
+    t.elements.emplace(name, std::make_pair(width, std::move(data)));
+  }
   for (const auto& name : needs.observables) {
     if (!r.has_observable(name)) continue;
     const auto s = r.read_observable(name);

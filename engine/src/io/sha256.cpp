@@ -9,6 +9,11 @@
 
 #include "anisodyn/core/error.hpp"
 
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#include <immintrin.h>
+#define ANISODYN_SHA_NI 1
+#endif
+
 namespace anisodyn::io {
 namespace {
 
@@ -24,12 +29,55 @@ constexpr std::uint32_t kRoundConstants[64] = {
 
 constexpr std::uint32_t rotr(std::uint32_t x, int n) { return (x >> n) | (x << (32 - n)); }
 
+#ifdef ANISODYN_SHA_NI
+// The same compression with the x86 SHA extensions (about 5× faster): analysis stages hash every
+// input trajectory (gigabytes for a large replica set) for their provenance records. The state is
+// kept in the ABEF/CDGH register layout that sha256rnds2 expects; the message schedule for
+// words 16… is msg2(msg1(W[g−4], W[g−3]) + W[t−7…], W[g−1]).
+__attribute__((target("sha,sse4.1,ssse3"))) void compress_sha_ni(std::uint32_t* h, const unsigned char* block) {
+  const __m128i byte_swap = _mm_set_epi64x(0x0c0d0e0f08090a0bLL, 0x0405060700010203LL);
+  __m128i tmp = _mm_shuffle_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(h)), 0xB1);       // CDAB
+  __m128i state1 = _mm_shuffle_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(h + 4)), 0x1B);  // HGFE
+  __m128i state0 = _mm_alignr_epi8(tmp, state1, 8);   // ABEF
+  state1 = _mm_blend_epi16(state1, tmp, 0xF0);         // CDGH
+  const __m128i abef = state0, cdgh = state1;
+  __m128i w[4];
+  for (int g = 0; g < 16; ++g) {
+    __m128i& x = w[g & 3];
+    if (g < 4) {
+      x = _mm_shuffle_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(block + 16 * g)), byte_swap);
+    } else {
+      const __m128i t7 = _mm_alignr_epi8(w[(g - 1) & 3], w[(g - 2) & 3], 4);
+      x = _mm_sha256msg2_epu32(_mm_add_epi32(_mm_sha256msg1_epu32(x, w[(g - 3) & 3]), t7), w[(g - 1) & 3]);
+    }
+    __m128i msg = _mm_add_epi32(x, _mm_loadu_si128(reinterpret_cast<const __m128i*>(kRoundConstants + 4 * g)));
+    state1 = _mm_sha256rnds2_epu32(state1, state0, msg);
+    msg = _mm_shuffle_epi32(msg, 0x0E);
+    state0 = _mm_sha256rnds2_epu32(state0, state1, msg);
+  }
+  state0 = _mm_add_epi32(state0, abef);
+  state1 = _mm_add_epi32(state1, cdgh);
+  tmp = _mm_shuffle_epi32(state0, 0x1B);     // FEBA
+  state1 = _mm_shuffle_epi32(state1, 0xB1);  // DCHG
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(h), _mm_blend_epi16(tmp, state1, 0xF0));     // DCBA
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(h + 4), _mm_alignr_epi8(state1, tmp, 8));    // HGFE
+}
+
+const bool kHaveShaNi = __builtin_cpu_supports("sha") && __builtin_cpu_supports("sse4.1") && __builtin_cpu_supports("ssse3");
+#endif
+
 }  // namespace
 
 Sha256::Sha256()
     : h_{0x6a09e667, 0xbb67ae85, 0x3c6ef372, 0xa54ff53a, 0x510e527f, 0x9b05688c, 0x1f83d9ab, 0x5be0cd19} {}
 
 void Sha256::compress(const unsigned char* block) {
+#ifdef ANISODYN_SHA_NI
+  if (kHaveShaNi) {
+    compress_sha_ni(h_, block);
+    return;
+  }
+#endif
   std::uint32_t w[64];
   for (int t = 0; t < 16; ++t) {
     w[t] = (std::uint32_t(block[4 * t]) << 24) | (std::uint32_t(block[4 * t + 1]) << 16) |

@@ -23,6 +23,18 @@ struct LagGrid {
   std::vector<LagClass> classes;  // ascending lag
 };
 
+/// Error samples per replica: with one replica, `blocks` contiguous blocks of time origins stand in
+/// for replicas (spec 50 §0: block averaging for a single run); otherwise the replica itself.
+inline std::size_t error_blocks(std::size_t replicas, std::size_t blocks = 10) { return replicas == 1 ? blocks : 1; }
+/// The block of an origin frame.
+inline std::size_t origin_block(std::size_t origin, std::size_t frames, std::size_t blocks) {
+  const std::size_t b = origin * blocks / frames;
+  return b < blocks ? b : blocks - 1;
+}
+
+/// Index of the lag class whose lag is nearest to t (in log distance).
+std::size_t nearest_lag_class(const LagGrid& grid, double t);
+
 /// True if consecutive time differences agree within rel_tol.
 bool uniformly_spaced(const std::vector<double>& time, double rel_tol = 1e-6);
 

@@ -22,6 +22,7 @@ struct TrajectoryNeeds {
   bool positions = false;
   bool orientations = false;
   std::vector<std::string> elements;  // extra per-particle elements, e.g. "rotation_vector"
+  std::vector<std::string> optional_elements;  // loaded when the file has them
   std::vector<std::string> observables;  // optional observables to load when present
 };
 

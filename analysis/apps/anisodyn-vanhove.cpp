@@ -1,0 +1,59 @@
+// anisodyn-vanhove: self van Hove functions at requested lag times, translational per component
+// and angular per body axis, each with its Gaussian reference at the same time (spec 50 A6, B2).
+#include <cstdio>
+
+#include "anisodyn/analysis/species_selection.hpp"
+#include "anisodyn/analysis/stage.hpp"
+#include "anisodyn/analysis/van_hove.hpp"
+
+using namespace anisodyn;
+using namespace anisodyn::analysis;
+
+int main(int argc, char** argv) {
+  const io::ToolInfo info{"anisodyn-vanhove", "self van Hove functions (translational and angular) with Gaussian references",
+                          "Configuration keys: inputs, species, times (required), components (tot x y z par perp), direction, "
+                          "bin_width, bins, angular_axes ([\"T\", \"W\", \"L\"]), angular_bin_width, angular_dimension, "
+                          "lags_per_decade, max_origins, csv. See docs/analysis.md."};
+  return run_analysis_stage(argc, argv, info, [](StageRun& run) {
+    const VanHoveSettings settings = parse_van_hove_settings(run.cfg);
+    run.cfg.finish();
+    const auto species = select_species(run.inputs.front(), settings.species, run.opt.config_name(), "species");
+    std::vector<VanHoveAnalysis> analyses;
+    for (std::size_t k = 0; k < species.size(); ++k) analyses.emplace_back(settings, run.inputs.size());
+    TrajectoryNeeds needs;
+    needs.positions = true;
+    needs.orientations = !settings.angular_axes.empty();
+    if (needs.orientations) needs.optional_elements = {"rotation_vector"};
+    run.each_replica(needs, [&](const Trajectory& t, std::size_t) {
+      for (std::size_t k = 0; k < species.size(); ++k) analyses[k].accumulate(t, species[k].index);
+    });
+    for (std::size_t k = 0; k < species.size(); ++k) {
+      Table& t = run.out.table("vanhove_" + species[k].name,
+                               "self van Hove functions of species " + species[k].name + " (spec 50 A6, B2), long format");
+      std::vector<double> time, comp_index, dim, r, g, ge, gauss;
+      nlohmann::json legend = nlohmann::json::array();
+      const auto curves = analyses[k].compute();
+      for (std::size_t c = 0; c < curves.size(); ++c) {
+        const auto& cv = curves[c];
+        legend.push_back({{"index", c}, {"component", cv.component}, {"time", cv.time}, {"mean_square", cv.mean_square},
+                          {"overflow_fraction", cv.overflow}, {"dimension", cv.dimension}});
+        for (std::size_t j = 0; j < cv.r.size(); ++j) {
+          time.push_back(cv.time); comp_index.push_back(static_cast<double>(c)); dim.push_back(cv.dimension);
+          r.push_back(cv.r[j]); g.push_back(cv.g[j]); ge.push_back(cv.g_error[j]); gauss.push_back(cv.gaussian[j]);
+        }
+        if (!run.opt.quiet && cv.overflow > 1e-3)
+          std::fprintf(stderr, "anisodyn-vanhove: warning: %s at t = %.4g: %.2g%% of displacements beyond the last bin (raise bins)\n",
+                       cv.component.c_str(), cv.time, 100 * cv.overflow);
+      }
+      t.add("time", "tau", "lag time used (the lag class nearest the requested time)", time);
+      t.add("curve", "1", "index of the curve (component and time) in the scalar 'vanhove_curves_<species>' details", comp_index);
+      t.add("dimension", "1", "dimension d of the component (angular: of the Gaussian reference)", dim);
+      t.add("r", "length or rad", "bin centre of |dr_l| (translational) or |dphi| (angular)", r);
+      t.add("G", "length^-d or rad^-3", "spec 50 A6: G_s with int v_d G dr = 1 (v_1 = 2, v_2 = 2 pi r, v_3 = 4 pi r^2); angular B2: int 4 pi phi^2 G dphi = 1", g);
+      t.add("G_se", "length^-d or rad^-3", "standard error of G over replicas (or origin blocks)", ge);
+      t.add("G_gaussian", "length^-d or rad^-3", "Gaussian reference with the same <dr_l^2> at the same t, bin-averaged in the same normalisation", gauss);
+      run.out.scalar({"vanhove_curves_" + species[k].name, static_cast<double>(curves.size()), 0.0, "1",
+                      "number of van Hove curves; details list each curve's component, time, mean square and overflow", {{"curves", legend}}});
+    }
+  });
+}
