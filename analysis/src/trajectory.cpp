@@ -9,6 +9,7 @@
 
 #include "anisodyn/core/error.hpp"
 #include "anisodyn/io/h5md.hpp"
+#include "anisodyn/system/state.hpp"
 
 namespace anisodyn::analysis {
 
@@ -162,8 +163,34 @@ void check_replica_matches(const Trajectory& a, const Trajectory& b, double time
   }
 }
 
+namespace {
+
+/// What the replica comparison needs, read cheaply (times and the first frame): mismatched replicas
+/// are reported before any replica is analysed.
+Trajectory replica_header(const std::string& path) {
+  io::H5mdReader r(path);
+  Trajectory t;
+  t.path = path;
+  t.frames = r.frame_count();
+  t.particles = r.particle_count();
+  t.time = r.frame_times();
+  t.time.resize(std::min(t.time.size(), t.frames));
+  t.species_table = r.species();
+  if (t.frames > 0) {
+    const State s = r.read_frame(0);
+    t.species.assign(s.particles.species.begin(), s.particles.species.end());
+  }
+  return t;
+}
+
+}  // namespace
+
 std::vector<double> for_each_replica(const std::vector<std::string>& paths, const TrajectoryNeeds& needs,
                                      const std::function<void(const Trajectory&, std::size_t)>& fn, double time_tolerance) {
+  if (paths.size() > 1) {
+    const Trajectory head = replica_header(paths.front());
+    for (std::size_t k = 1; k < paths.size(); ++k) check_replica_matches(head, replica_header(paths[k]), time_tolerance);
+  }
   std::vector<double> mean_time;
   Trajectory first;
   for (std::size_t k = 0; k < paths.size(); ++k) {

@@ -1,0 +1,1 @@
+anisodyn_add_script_test(analysis_tools analysis_tools.py)
