@@ -65,16 +65,11 @@ int main(int argc, char** argv) {
   return run_analysis_stage(argc, argv, info, [](StageRun& run) {
     const MsdSettings settings = parse_msd_settings(run.cfg);
     run.cfg.finish();
-    const auto species = select_species(run.inputs.front(), settings.species, run.opt.config_name(), "species");
-    std::vector<MsdAnalysis> analyses;
-    for (std::size_t k = 0; k < species.size(); ++k) analyses.emplace_back(settings, run.inputs.size(), run.opt.config_name());
     TrajectoryNeeds needs;
     needs.positions = true;
     needs.orientations = settings.reference == MsdReference::Director || settings.reference == MsdReference::ParticleAxis || settings.body_frame;
     if (settings.body_frame) needs.optional_elements = {"body_displacement"};
-    run.each_replica(needs, [&](const Trajectory& t, std::size_t) {
-      for (std::size_t k = 0; k < species.size(); ++k) analyses[k].accumulate(t, species[k].index);
-    });
-    for (std::size_t k = 0; k < species.size(); ++k) write_results(run, species[k], analyses[k].compute());
+    auto analyses = analyse_each_species<MsdAnalysis>(run, settings, settings.species, needs);
+    for (auto& [sp, a] : analyses) write_results(run, sp, a.compute());
   });
 }

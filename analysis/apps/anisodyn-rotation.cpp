@@ -54,15 +54,10 @@ int main(int argc, char** argv) {
   return run_analysis_stage(argc, argv, info, [](StageRun& run) {
     const RotationSettings settings = parse_rotation_settings(run.cfg);
     run.cfg.finish();
-    const auto species = select_species(run.inputs.front(), settings.species, run.opt.config_name(), "species");
-    std::vector<RotationAnalysis> analyses;
-    for (std::size_t k = 0; k < species.size(); ++k) analyses.emplace_back(settings, run.inputs.size());
     TrajectoryNeeds needs;
     needs.orientations = true;
     needs.optional_elements = {"rotation_vector"};
-    run.each_replica(needs, [&](const Trajectory& t, std::size_t) {
-      for (std::size_t k = 0; k < species.size(); ++k) analyses[k].accumulate(t, species[k].index);
-    });
-    for (std::size_t k = 0; k < species.size(); ++k) write_results(run, species[k], analyses[k].compute());
+    auto analyses = analyse_each_species<RotationAnalysis>(run, settings, settings.species, needs);
+    for (auto& [sp, a] : analyses) write_results(run, sp, a.compute());
   });
 }

@@ -17,22 +17,17 @@ int main(int argc, char** argv) {
   return run_analysis_stage(argc, argv, info, [](StageRun& run) {
     const VanHoveSettings settings = parse_van_hove_settings(run.cfg);
     run.cfg.finish();
-    const auto species = select_species(run.inputs.front(), settings.species, run.opt.config_name(), "species");
-    std::vector<VanHoveAnalysis> analyses;
-    for (std::size_t k = 0; k < species.size(); ++k) analyses.emplace_back(settings, run.inputs.size());
     TrajectoryNeeds needs;
     needs.positions = true;
     needs.orientations = !settings.angular_axes.empty();
     if (needs.orientations) needs.optional_elements = {"rotation_vector"};
-    run.each_replica(needs, [&](const Trajectory& t, std::size_t) {
-      for (std::size_t k = 0; k < species.size(); ++k) analyses[k].accumulate(t, species[k].index);
-    });
-    for (std::size_t k = 0; k < species.size(); ++k) {
-      Table& t = run.out.table("vanhove_" + species[k].name,
-                               "self van Hove functions of species " + species[k].name + " (spec 50 A6, B2), long format");
+    auto analyses = analyse_each_species<VanHoveAnalysis>(run, settings, settings.species, needs);
+    for (auto& [sp, a] : analyses) {
+      Table& t = run.out.table("vanhove_" + sp.name,
+                               "self van Hove functions of species " + sp.name + " (spec 50 A6, B2), long format");
       std::vector<double> time, comp_index, dim, r, g, ge, gauss;
       nlohmann::json legend = nlohmann::json::array();
-      const auto curves = analyses[k].compute();
+      const auto curves = a.compute();
       for (std::size_t c = 0; c < curves.size(); ++c) {
         const auto& cv = curves[c];
         legend.push_back({{"index", c}, {"component", cv.component}, {"time", cv.time}, {"mean_square", cv.mean_square},
@@ -52,7 +47,7 @@ int main(int argc, char** argv) {
       t.add("G", "length^-d or rad^-3", "spec 50 A6: G_s with int v_d G dr = 1 (v_1 = 2, v_2 = 2 pi r, v_3 = 4 pi r^2); angular B2: int 4 pi phi^2 G dphi = 1", g);
       t.add("G_se", "length^-d or rad^-3", "standard error of G over replicas (or origin blocks)", ge);
       t.add("G_gaussian", "length^-d or rad^-3", "Gaussian reference with the same <dr_l^2> at the same t, bin-averaged in the same normalisation", gauss);
-      run.out.scalar({"vanhove_curves_" + species[k].name, static_cast<double>(curves.size()), 0.0, "1",
+      run.out.scalar({"vanhove_curves_" + sp.name, static_cast<double>(curves.size()), 0.0, "1",
                       "number of van Hove curves; details list each curve's component, time, mean square and overflow", {{"curves", legend}}});
     }
   });

@@ -8,9 +8,11 @@
 // before the heavy work, fills `out` and returns; the driver then writes all files atomically.
 #include <functional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "anisodyn/analysis/analysis_output.hpp"
+#include "anisodyn/analysis/species_selection.hpp"
 #include "anisodyn/analysis/trajectory.hpp"
 #include "anisodyn/io/command_line.hpp"
 #include "anisodyn/io/json_config.hpp"
@@ -32,6 +34,23 @@ struct StageRun {
   /// A parameter error: InputError naming the config file and `key` (a path like "reference").
   [[noreturn]] void fail(const std::string& key, const std::string& problem) const;
 };
+
+/// The common shape of a per-species stage: one Analysis(settings, replica count) per selected
+/// species (`species` empty = every species), fed every replica through accumulate(t, index).
+template <class Analysis, class Settings>
+std::vector<std::pair<SelectedSpecies, Analysis>> analyse_each_species(const StageRun& run, const Settings& settings,
+                                                                       const std::string& species, const TrajectoryNeeds& needs) {
+  std::vector<std::pair<SelectedSpecies, Analysis>> analyses;
+  for (const auto& sp : select_species(run.inputs.front(), species, run.opt.config_name(), "species"))
+    if constexpr (std::is_constructible_v<Analysis, const Settings&, std::size_t, std::string>)
+      analyses.emplace_back(sp, Analysis(settings, run.inputs.size(), run.opt.config_name()));  // names the config in errors
+    else
+      analyses.emplace_back(sp, Analysis(settings, run.inputs.size()));
+  run.each_replica(needs, [&](const Trajectory& t, std::size_t) {
+    for (auto& [sp, a] : analyses) a.accumulate(t, sp.index);
+  });
+  return analyses;
+}
 
 int run_analysis_stage(int argc, char** argv, const io::ToolInfo& info, const std::function<void(StageRun&)>& body);
 
