@@ -86,6 +86,10 @@ assert d["scalars/Dr_msad_L_board"][0] > 0
 assert d["rotation_board/C1_L"][0] <= 1.0
 d = stage("anisodyn-vanhove", {"times": [0.5, 5.0], "components": ["tot", "x"], "angular_axes": ["L"]}, "vanhove")
 assert np.all(d["vanhove_board/G"] >= 0)
+d = stage("anisodyn-clusters", {"mode": "nematic", "axis": "L", "K_par": 12.25, "K_perp": 1.55}, "clusters")
+assert d["scalars/N_tot"][0] > 0
+d = stage("anisodyn-clusters", {"mode": "dipolar", "gamma": 13.0}, "chains")
+assert np.all(np.isfinite(d["chain_statistics/X_c"]))
 
 # ---- bad input: exit 2, a message naming the problem, nothing written ----------------------------
 with h5py.File("rep0.h5") as src:
