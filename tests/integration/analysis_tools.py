@@ -90,6 +90,11 @@ d = stage("anisodyn-clusters", {"mode": "nematic", "axis": "L", "K_par": 12.25, 
 assert d["scalars/N_tot"][0] > 0
 d = stage("anisodyn-clusters", {"mode": "dipolar", "gamma": 13.0}, "chains")
 assert np.all(np.isfinite(d["chain_statistics/X_c"]))
+d = stage("anisodyn-order", {}, "order")
+U = d["order_board/U"]
+assert np.all((U >= 0) & (U <= 1)), U
+d = stage("anisodyn-structure", {"reference": "none", "dr": 0.5}, "structure")
+assert np.all(np.isfinite(d["structure_board_board/g"]))
 
 # ---- bad input: exit 2, a message naming the problem, nothing written ----------------------------
 with h5py.File("rep0.h5") as src:
@@ -105,12 +110,14 @@ with h5py.File("unordered.h5", "r+") as f:
     t[...] = v
 json.dump({}, open("empty.json", "w"))
 json.dump({"reference": "director"}, open("director.json", "w"))
+json.dump({"reference": "director", "dr": 0.5}, open("structure_director.json", "w"))
 json.dump({"lags_per_decde": 5}, open("typo.json", "w"))
 cases = [
     ("missing dataset", ["anisodyn-msd", "--config", "empty.json", "--input", "no_image.h5"], "particles/all/image"),
     ("frames out of order", ["anisodyn-msd", "--config", "empty.json", "--input", "unordered.h5"], "frames out of order"),
     ("director in an isotropic box", ["anisodyn-msd", "--config", "director.json", "--input", "rep*.h5"], "no orientational order"),
     ("mismatched replicas", ["anisodyn-msd", "--config", "empty.json", "--input", "rep*.h5", "--input", "odd/short.h5"], "mismatched replicas"),
+    ("structure: director in an isotropic box", ["anisodyn-structure", "--config", "structure_director.json", "--input", "rep*.h5"], "director"),
     ("unknown key", ["anisodyn-msd", "--config", "typo.json", "--input", "rep*.h5"], "lags_per_decade"),
     ("glob matching nothing", ["anisodyn-rotation", "--config", "empty.json", "--input", "nothing*.h5"], "no input file matches"),
     ("rotation: frames out of order", ["anisodyn-rotation", "--config", "empty.json", "--input", "unordered.h5"], "frames out of order"),

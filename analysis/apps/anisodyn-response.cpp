@@ -1,0 +1,105 @@
+// anisodyn-response: switching response times per trajectory (spec 50 §8.1: t_ON, t_OFF at the
+// literal 105% and t_OFF,95%) with modified Z-score outlier rejection over trajectories (§8.2), and
+// the replica-mean signal against time since the switch-on.
+#include <cstdio>
+
+#include "anisodyn/analysis/response_times.hpp"
+#include "anisodyn/analysis/stage.hpp"
+
+using namespace anisodyn;
+using namespace anisodyn::analysis;
+
+namespace {
+
+std::vector<double> flags(const std::vector<char>& f) { return std::vector<double>(f.begin(), f.end()); }
+
+void add_time_columns(Table& t, const std::string& name, const std::string& definition, const std::vector<double>& values,
+                      const OutlierRejection& o) {
+  t.add(name, "tau", definition + " (NaN: threshold never reached)", values);
+  t.add(name + "_score", "1", "spec 50 H2: modified Z-score M_j = 0.6745 (t_j - median)/MAD of " + name, o.score);
+  t.add(name + "_rejected", "1", "1 if |M_j| > threshold (spec 50 H2 Decision: 3.5), else 0", flags(o.rejected));
+  t.add(name + "_flag_one_sided", "1", "1 if M_j > threshold (the one-sided criterion as printed), else 0", flags(o.one_sided));
+}
+
+void add_scalar(StageRun& run, const std::string& name, const std::string& species, const std::string& definition,
+                const OutlierRejection& o, const ResponseSettings& s, const ResponseResult& r) {
+  Scalar sc;
+  sc.name = name + "_" + species;
+  sc.value = o.retained.value;
+  sc.error = o.retained.error;
+  sc.units = "tau";
+  sc.definition = definition + "; mean +- standard error over the trajectories retained by the modified Z-score (spec 50 H2)";
+  sc.details = {{"trajectories", o.score.size()}, {"retained", o.used}, {"rejected", o.rejected_count},
+                {"flagged_one_sided", o.one_sided_count}, {"not_reached", o.missing}, {"z_threshold", s.z_threshold},
+                {"scale", o.mean_absolute_deviation ? "MAD = 0: 1.253314 x mean absolute deviation" : "MAD / 0.6745"},
+                {"signal", r.signal}, {"main_axis", axis_letter(r.main_axis)},
+                {"smoothing", "centred moving average over " + std::to_string(s.parameters.smoothing_fraction * 100) +
+                                  "% of each segment's frames (Decision)"},
+                {"interpolation", "linear between the frames bracketing the threshold"}};
+  run.out.scalar(sc);
+}
+
+void write_results(StageRun& run, const ResponseSettings& s, const SelectedSpecies& sp, const ResponseResult& r) {
+  const std::string sig = r.signal == "B2" ? std::string("B_2,") + axis_letter(r.main_axis) : r.signal;
+  Table& t = run.out.table("response_" + sp.name, "response times of species " + sp.name + " per trajectory (spec 50 section 8), signal " + sig);
+  std::vector<double> index, on_at, off_at, b_on, b_eq, w_on, w_off;
+  std::vector<double> t_on, t_off, t_off95;
+  for (std::size_t k = 0; k < r.replicas.size(); ++k) {
+    const auto& x = r.replicas[k];
+    index.push_back(static_cast<double>(k));
+    on_at.push_back(x.switch_on);
+    off_at.push_back(x.switch_off);
+    b_on.push_back(x.b_on);
+    b_eq.push_back(x.b_eq_off);
+    w_on.push_back(static_cast<double>(x.window_on));
+    w_off.push_back(static_cast<double>(x.window_off));
+    t_on.push_back(x.t_on);
+    t_off.push_back(x.t_off);
+    t_off95.push_back(x.t_off95);
+  }
+  t.add("replica", "1", "index of the input trajectory (order of the inputs)", index);
+  t.add("switch_on", "tau", "switch-on instant (config switch_on or the field_switches observable)", on_at);
+  t.add("switch_off", "tau", "switch-off instant (NaN: none)", off_at);
+  t.add("signal_on", "1", "spec 50 H1: B_on, mean of " + sig + " over the last 25% of the on-segment", b_on);
+  t.add("signal_eq_off", "1", "spec 50 H1: B_eq,off, mean of " + sig + " over the field-off segment before the switch-on", b_eq);
+  t.add("window_on", "frames", "moving-average window of the on-segment (1% of its frames, odd)", w_on);
+  t.add("window_off", "frames", "moving-average window of the off-segment (1% of its frames, odd)", w_off);
+  add_time_columns(t, "t_on", "spec 50 H1: first time after switch-on with smoothed " + sig + " >= 0.95 B_on", t_on, r.on);
+  add_time_columns(t, "t_off", "spec 50 H1: first time after switch-off with smoothed " + sig + " <= 1.05 B_eq,off (literal 105%)", t_off, r.off);
+  add_time_columns(t, "t_off95", "spec 50 H1 Decision: first time after switch-off with smoothed " + sig +
+                                      " <= B_eq,off + 0.05 (B_on - B_eq,off)", t_off95, r.off95);
+  Table& c = run.out.table("response_curve_" + sp.name, "mean " + sig + " of species " + sp.name + " against time since the switch-on");
+  c.add("time", "tau", "time since the switch-on: mean over replicas of t_frame - t_switch_on (spec 50 section 0)", r.curve_time);
+  c.add("signal", "1", sig + " (spec 50 C1/C2/C4), replicas interpolated linearly onto the common grid", r.curve);
+  c.add("signal_se", "1", "standard error over replicas (n - 1; NaN for one replica)", r.curve_se);
+  add_scalar(run, "t_on", sp.name, "spec 50 H1: t_ON", r.on, s, r);
+  add_scalar(run, "t_off", sp.name, "spec 50 H1: t_OFF at 1.05 B_eq,off (literal reading; the plotted definition)", r.off, s, r);
+  add_scalar(run, "t_off95", sp.name, "spec 50 H1 Decision: t_OFF,95% at B_eq,off + 0.05 (B_on - B_eq,off), robust when B_eq,off ~ 0",
+             r.off95, s, r);
+  if (!run.opt.quiet)
+    std::fprintf(stderr, "anisodyn-response: %s: t_ON = %.4g ± %.2g (%zu rejected), t_OFF = %.4g ± %.2g, t_OFF95 = %.4g ± %.2g\n",
+                 sp.name.c_str(), r.on.retained.value, r.on.retained.error, r.on.rejected_count, r.off.retained.value,
+                 r.off.retained.error, r.off95.retained.value, r.off95.retained.error);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const io::ToolInfo info{"anisodyn-response", "switching response times t_ON, t_OFF with outlier rejection over trajectories",
+                          "Configuration keys: inputs, species, signal (B2 | U_L | U_W | U_T | S_cube), main_axis (T W L | auto), "
+                          "field_direction, switch_on, switch_off, cycle, smoothing_fraction, outlier_threshold, csv."};
+  return run_analysis_stage(argc, argv, info, [](StageRun& run) {
+    const ResponseSettings settings = parse_response_settings(run.cfg);
+    run.cfg.finish();
+    const auto species = select_oriented_species(run.inputs.front(), settings.species, run.opt.config_name(), "species");
+    std::vector<ResponseAnalysis> analyses;
+    for (std::size_t k = 0; k < species.size(); ++k) analyses.emplace_back(settings, run.opt.config_name());
+    TrajectoryNeeds needs;
+    needs.orientations = true;
+    needs.observables = {"field_switches"};
+    run.each_replica(needs, [&](const Trajectory& t, std::size_t) {
+      for (std::size_t k = 0; k < species.size(); ++k) analyses[k].accumulate(t, species[k].index);
+    });
+    for (std::size_t k = 0; k < species.size(); ++k) write_results(run, settings, species[k], analyses[k].compute());
+  });
+}
