@@ -192,25 +192,11 @@ std::vector<double> for_each_replica(const std::vector<std::string>& paths, cons
     for (std::size_t k = 1; k < paths.size(); ++k) check_replica_matches(head, replica_header(paths[k]), time_tolerance);
   }
   std::vector<double> mean_time;
-  Trajectory first;
   for (std::size_t k = 0; k < paths.size(); ++k) {
     Trajectory t = load_trajectory(paths[k], needs);
-    if (k == 0) {
-      mean_time.assign(t.frames, 0.0);
-    } else {
-      check_replica_matches(first, t, time_tolerance);
-    }
+    if (k == 0) mean_time.assign(t.frames, 0.0);
     for (std::size_t f = 0; f < t.frames; ++f) mean_time[f] += t.time[f] / static_cast<double>(paths.size());
     fn(t, k);
-    if (k == 0) {
-      // keep only what the comparison needs
-      first.path = t.path;
-      first.particles = t.particles;
-      first.frames = t.frames;
-      first.species = t.species;
-      first.species_table = t.species_table;
-      first.time = t.time;
-    }
   }
   return mean_time;
 }
