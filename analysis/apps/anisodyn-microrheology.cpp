@@ -1,6 +1,7 @@
 // anisodyn-microrheology: probe microrheology over replicas (spec 50 §6).
-//   mode "passive": G′(ω), G″(ω) from the 3-D tracer MSD by the Mason GSER (F1) and the Evans
-//                   compliance method (F2) on the same ω = 1/t grid, with jackknife errors.
+//   mode "passive": G′(ω), G″(ω) from the 3-D tracer MSD by the Mason GSER (F1), the GSER to second
+//                   order in the log curvature, and the Evans compliance method (F2) on the same
+//                   ω = 1/t grid, with jackknife errors.
 //   mode "active":  effective friction γ_eff/γ_0 of a pulled tracer (F3), the axisymmetric bath density
 //                   map around it with the local order, the on-axis profile and the wake length (F4).
 #include <algorithm>
@@ -40,6 +41,15 @@ void write_passive(StageRun& run, const PassiveResult& r) {
   t.add("Gp_mason_se", "k_BT/length^3", "jackknife standard error of Gp_mason over replicas", by_omega(r.mason_error.storage));
   t.add("Gpp_mason", "k_BT/length^3", "spec 50 F1: G'' = |G*| sin(pi alpha/2)", by_omega(r.mason.loss));
   t.add("Gpp_mason_se", "k_BT/length^3", "jackknife standard error of Gpp_mason over replicas", by_omega(r.mason_error.loss));
+  t.add("curvature", "1", "beta = d^2 ln msd / d(ln t)^2 at t = 1/omega, from the same local quadratic fit", by_omega(r.mason2.curvature));
+  t.add("curvature_se", "1", "jackknife standard error of curvature over replicas", by_omega(r.mason2_error.curvature));
+  t.add("Gp_mason2", "k_BT/length^3",
+        "Re G* of the GSER to second order (docs/analysis.md): G* = k_BT/(pi a msd(1/omega) Gamma(1 + alpha) e^{-i pi alpha/2} "
+        "[1 + (beta/2)((psi(1 + alpha) - i pi/2)^2 + psi_1(1 + alpha))]), beta = curvature",
+        by_omega(r.mason2.storage));
+  t.add("Gp_mason2_se", "k_BT/length^3", "jackknife standard error of Gp_mason2 over replicas", by_omega(r.mason2_error.storage));
+  t.add("Gpp_mason2", "k_BT/length^3", "Im G* of the GSER to second order", by_omega(r.mason2.loss));
+  t.add("Gpp_mason2_se", "k_BT/length^3", "jackknife standard error of Gpp_mason2 over replicas", by_omega(r.mason2_error.loss));
   t.add("Gp_evans", "k_BT/length^3",
         "spec 50 F2: Re G*, i omega/G* = (1 - e^{-i omega t_1}) J_1/t_1 + eta_inf^-1 e^{-i omega t_N} + sum_k (dJ_k/dt_k)(e^{-i omega t_{k-1}} - e^{-i omega t_k}), "
         "J = (pi a/k_BT) msd, J(0) = 0, eta_inf^-1 = (pi a/k_BT) 6 D_long; t_N = the end of the D_long fit window (or evans_t_max), J linear with slope eta_inf^-1 beyond",

@@ -111,11 +111,12 @@ std::vector<double> local_log_slope(const std::vector<double>& x, const std::vec
 }
 
 bool local_log_quadratic(const std::vector<double>& x, const std::vector<double>& y, double x0, double half_width_decades,
-                         double& y_at, double& slope_at) {
+                         LogQuadratic& fit) {
   Eigen::VectorXd c;
   if (!local_polynomial(x, y, x0, half_width_decades, 2, c)) return false;
-  y_at = std::exp(c(0));
-  slope_at = c(1);
+  fit.value = std::exp(c(0));
+  fit.slope = c(1);
+  fit.curvature = 2.0 * c(2);
   return true;
 }
 

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "anisodyn/analysis/fitting.hpp"
+#include "anisodyn/analysis/polygamma.hpp"
 #include "anisodyn/core/error.hpp"
 
 namespace anisodyn::analysis {
@@ -40,24 +41,42 @@ std::size_t lags_up_to(const std::vector<double>& t, double t_last, const std::s
 
 }  // namespace
 
+namespace {
+
+/// s·L{MSD}(s) at s = iω divided by MSD(1/ω), for MSD(t) = MSD(1/ω) exp(α u + β u²/2), u = ln(ωt):
+/// Γ(1 + α) e^{−iπα/2} for the power law (first order); the second order adds the curvature to first
+/// order in β, (β/2) ∂²_α[Γ(1 + α)(iω/ω)^{−α}] = (β/2) Γ(1 + α) e^{−iπα/2} [(ψ(1 + α) − iπ/2)² + ψ₁(1 + α)],
+/// because ∫ e^{−st} t^α ln²(ωt) dt is the second α-derivative of ∫ e^{−st} t^α dt.
+std::complex<double> gser_transform_factor(double alpha, double curvature, GserOrder order) {
+  const std::complex<double> power_law = std::tgamma(1.0 + alpha) * std::exp(std::complex<double>(0.0, -kPi * alpha / 2.0));
+  if (order == GserOrder::First) return power_law;
+  const std::complex<double> k1 = digamma(1.0 + alpha) - std::complex<double>(0.0, kPi / 2.0);
+  return power_law * (1.0 + 0.5 * curvature * (k1 * k1 + trigamma(1.0 + alpha)));
+}
+
+}  // namespace
+
 Moduli mason_moduli(const std::vector<double>& t, const std::vector<double>& msd, double radius, double kT,
-                    double half_width_decades) {
+                    double half_width_decades, GserOrder order) {
   Moduli m;
   const std::size_t n = t.size();
   m.omega.assign(n, kNaN);
   m.storage.assign(n, kNaN);
   m.loss.assign(n, kNaN);
   m.alpha.assign(n, kNaN);
+  m.curvature.assign(n, kNaN);
   for (std::size_t k = 0; k < n; ++k) {
     if (!(t[k] > 0)) continue;
     m.omega[k] = 1.0 / t[k];
-    double smoothed = 0, alpha = 0;
-    if (!(msd[k] > 0) || !local_log_quadratic(t, msd, t[k], half_width_decades, smoothed, alpha)) continue;
-    // |G*| uses the measured MSD at the grid point t = 1/ω; the local fit supplies only α.
-    const double modulus = kT / (kPi * radius * msd[k] * std::tgamma(1.0 + alpha));
-    m.alpha[k] = alpha;
-    m.storage[k] = modulus * std::cos(kPi * alpha / 2.0);
-    m.loss[k] = modulus * std::sin(kPi * alpha / 2.0);
+    LogQuadratic fit;
+    if (!(msd[k] > 0) || !local_log_quadratic(t, msd, t[k], half_width_decades, fit)) continue;
+    // G* = k_BT / (π a · s L{MSD}(s)) at s = iω; the measured MSD at the grid point t = 1/ω, the local
+    // fit supplies only the log derivatives.
+    const std::complex<double> g = kT / (kPi * radius * msd[k] * gser_transform_factor(fit.slope, fit.curvature, order));
+    m.alpha[k] = fit.slope;
+    m.curvature[k] = fit.curvature;
+    m.storage[k] = g.real();
+    m.loss[k] = g.imag();
   }
   return m;
 }
@@ -194,17 +213,19 @@ PassiveResult PassiveMicrorheology::compute() const {
   const std::size_t evans_n = lags_up_to(r.time, s_.evans_t_max ? *s_.evans_t_max : r.fit_t_max, config_file_);
   r.evans_t_max = r.time[evans_n - 1];
   const std::vector<double> evans_t(r.time.begin(), r.time.begin() + static_cast<std::ptrdiff_t>(evans_n));
-  auto moduli_of = [&](const std::vector<double>& msd, Moduli& mason, Moduli& evans) {
-    mason = mason_moduli(r.time, msd, s_.radius, s_.kT, s_.half_width_decades);
+  auto moduli_of = [&](const std::vector<double>& msd, Moduli& mason, Moduli& mason2, Moduli& evans) {
+    mason = mason_moduli(r.time, msd, s_.radius, s_.kT, s_.half_width_decades, GserOrder::First);
+    mason2 = mason_moduli(r.time, msd, s_.radius, s_.kT, s_.half_width_decades, GserOrder::Second);
     const std::vector<double> evans_msd(msd.begin(), msd.begin() + static_cast<std::ptrdiff_t>(evans_n));
     evans = evans_moduli(evans_t, evans_msd, s_.radius, s_.kT, long_time_diffusion(r.time, msd, window), omega);
   };
-  moduli_of(r.msd, r.mason, r.evans);
+  moduli_of(r.msd, r.mason, r.mason2, r.evans);
   const auto stacked = jackknife_curve(samples_, [&](const std::vector<double>& msd) {
-    Moduli a, b;
-    moduli_of(msd, a, b);
+    Moduli a, a2, b;
+    moduli_of(msd, a, a2, b);
     std::vector<double> out;
-    for (const auto* v : {&a.storage, &a.loss, &b.storage, &b.loss, &a.alpha}) out.insert(out.end(), v->begin(), v->end());
+    for (const auto* v : {&a.storage, &a.loss, &a2.storage, &a2.loss, &b.storage, &b.loss, &a2.alpha, &a2.curvature})
+      out.insert(out.end(), v->begin(), v->end());
     return out;
   });
   auto part = [&](std::size_t p) {
@@ -212,8 +233,9 @@ PassiveResult PassiveMicrorheology::compute() const {
     return std::vector<double>(stacked.error.begin() + static_cast<std::ptrdiff_t>(p * n),
                                stacked.error.begin() + static_cast<std::ptrdiff_t>((p + 1) * n));
   };
-  r.mason_error = Moduli{omega, part(0), part(1), part(4)};
-  r.evans_error = Moduli{omega, part(2), part(3), {}};
+  r.mason_error = Moduli{omega, part(0), part(1), part(6), part(7)};
+  r.mason2_error = Moduli{omega, part(2), part(3), part(6), part(7)};
+  r.evans_error = Moduli{omega, part(4), part(5), {}, {}};
   return r;
 }
 

@@ -26,10 +26,16 @@ LinearFit fit_proportional(const std::vector<double>& x, const std::vector<doubl
 std::vector<double> local_log_slope(const std::vector<double>& x, const std::vector<double>& y, double half_width_decades,
                                     int degree = 1);
 
-/// Local quadratic fit of ln y against ln x around x0 (±half_width decades): value of y and the
-/// log slope at x0. Returns false when fewer than 3 points are available.
+/// A local quadratic of ln y in u = ln x − ln x0: y at x0, the log slope d ln y/d ln x and the log
+/// curvature d² ln y/d(ln x)² there.
+struct LogQuadratic {
+  double value = 0, slope = 0, curvature = 0;
+};
+
+/// Local quadratic fit of ln y against ln x around x0 (±half_width decades). Returns false when fewer
+/// than 4 points are available (one residual degree of freedom).
 bool local_log_quadratic(const std::vector<double>& x, const std::vector<double>& y, double x0, double half_width_decades,
-                         double& y_at, double& slope_at);
+                         LogQuadratic& fit);
 
 /// y = A exp(−x/τ) from a linear fit of ln y over the points with y > 0; returns the fit of ln y
 /// (slope = −1/τ).

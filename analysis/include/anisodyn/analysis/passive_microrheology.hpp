@@ -3,6 +3,11 @@
 //   - Mason GSER (F1): α(ω) = d ln MSD / d ln t at t = 1/ω from a local quadratic fit of ln MSD
 //     against ln t over ±0.25 decade (Decision), |G*| = k_BT / (π a MSD(1/ω) Γ(1 + α)),
 //     G′ = |G*| cos(πα/2), G″ = |G*| sin(πα/2);
+//   - the GSER to second order (Decision, docs/analysis.md): the same local quadratic also gives the log
+//     curvature β = d² ln MSD / d(ln t)², and G* = k_BT / (π a MSD(1/ω) Γ(1 + α) e^{−iπα/2}
+//     [1 + (β/2)((ψ(1 + α) − iπ/2)² + ψ₁(1 + α))]) — the Laplace transform of the local
+//     log-quadratic MSD to first order in β. F1 assumes a pure power law and is ~20 % low where α
+//     changes quickly (a Maxwell fluid at ωλ ≈ 1); the curvature term brings it within ~3 %;
 //   - Evans compliance method (F2): J(t) = (π a / k_BT) MSD(t), J(0) = 0, η_∞⁻¹ = (π a / k_BT)·6 D_long,
 //     iω/G*(ω) = (1 − e^{−iωt_1}) J_1/t_1 + η_∞⁻¹ e^{−iωt_N} + Σ_{k≥2} (ΔJ_k/Δt_k)(e^{−iωt_{k−1}} − e^{−iωt_k}).
 // Both are evaluated at ω = 1/t_k on the MSD's lag grid. The Evans sum runs over the lags up to the end
@@ -36,13 +41,17 @@ inline constexpr double kMasonHalfWidthDecades = 0.25;
 /// Storage and loss moduli on an ω grid.
 struct Moduli {
   std::vector<double> omega, storage, loss;
-  std::vector<double> alpha;  // Mason only: the local log slope used at t = 1/ω
+  std::vector<double> alpha;      // Mason only: the local log slope used at t = 1/ω
+  std::vector<double> curvature;  // Mason only: the local log curvature β at t = 1/ω
 };
+
+/// F1 as printed (local power law) or with the log-curvature term (second order).
+enum class GserOrder { First, Second };
 
 /// Mason GSER at ω_k = 1/t_k for every lag t_k (ascending t). NaN where fewer than 4 points lie within
 /// the fit window (the shortest lags of a grid with whole frame lags) or MSD ≤ 0.
 Moduli mason_moduli(const std::vector<double>& t, const std::vector<double>& msd, double radius, double kT,
-                    double half_width_decades = kMasonHalfWidthDecades);
+                    double half_width_decades = kMasonHalfWidthDecades, GserOrder order = GserOrder::First);
 
 /// Evans compliance method on the grid `omega`, from (t_k, MSD_k) (ascending t, t_1 > 0) with J(0) = 0
 /// and the long-time slope η_∞⁻¹ = (π a / k_BT)·6 d_long.
@@ -65,8 +74,8 @@ PassiveMicrorheologySettings parse_passive_microrheology_settings(io::ConfigNode
 struct PassiveResult {
   std::vector<double> time;                 // MSD lags t_k (ascending)
   std::vector<double> msd, msd_error;       // 3-D tracer MSD and its standard error
-  Moduli mason, evans;                      // on ω_k = 1/t_k, same order as `time`
-  Moduli mason_error, evans_error;          // jackknife standard errors (alpha error in mason_error.alpha)
+  Moduli mason, mason2, evans;              // F1, second-order GSER, F2 on ω_k = 1/t_k, same order as `time`
+  Moduli mason_error, mason2_error, evans_error;  // jackknife standard errors (α and β errors in mason2_error)
   Estimate d_long;                          // from MsdAnalysis (component tot)
   double fit_t_min = 0, fit_t_max = 0, fit_mean_beta = 0;
   double evans_t_max = 0;                   // t_N: the last lag in the Evans sum
