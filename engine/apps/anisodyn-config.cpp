@@ -25,10 +25,12 @@ int main(int argc, char** argv) {
     std::optional<State> existing;
     if (!opt.inputs.empty()) existing = io::H5mdReader(opt.inputs[0]).read_frame(-1);
 
-    State state = build_configuration(cfg, existing, seed);
+    const std::uint64_t replica = opt.replica.value_or(0);
+    State state = build_configuration(cfg, existing, seed, replica);
 
     nlohmann::json parameters = opt.config;
     parameters["seed"] = seed;
+    if (replica) parameters["replica"] = replica;
     io::H5mdWriter writer(opt.output, {"anisodyn", "", "anisodyn user", parameters,
                                        io::make_provenance(info.name, opt.argv, opt.inputs), state.species});
     writer.append_frame(state);

@@ -57,9 +57,11 @@ int main(int argc, char** argv) {
     io::ConfigNode cfg(opt.config, opt.config_name());
     McProtocol protocol = parse_mc_protocol(cfg);
     if (opt.seed) protocol.seed = *opt.seed;
+    if (opt.replica) protocol.replica = *opt.replica;
     cfg.finish();
     nlohmann::json parameters = opt.config;
     parameters["seed"] = protocol.seed;
+    if (protocol.replica) parameters["replica"] = protocol.replica;
 
     State state = io::H5mdReader(input).read_frame(-1);
     const std::string checkpoint_path = opt.output + ".checkpoint.h5";

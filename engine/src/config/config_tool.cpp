@@ -46,7 +46,7 @@ std::map<std::string, int> merge_species(SpeciesTable& table, io::ConfigNode& cf
 
 }  // namespace
 
-State build_configuration(io::ConfigNode& cfg, const std::optional<State>& existing, std::uint64_t seed) {
+State build_configuration(io::ConfigNode& cfg, const std::optional<State>& existing, std::uint64_t seed, std::uint64_t replica) {
   State state;
   if (existing) state = *existing;
   if (!existing && !cfg.has("species")) cfg.fail("species", "expected the species table (an array of species)");
@@ -91,7 +91,8 @@ State build_configuration(io::ConfigNode& cfg, const std::optional<State>& exist
                                         " (twice the largest cut-off, for the minimum image); the box is " +
                                         std::to_string(state.box.shortest_edge()) + " across");
 
-  Rng rng(seed, 0x00C0F16ULL);
+  // Replica K draws from its own stream; replica 0 keeps the stream of a run without --replica.
+  Rng rng(seed, 0x00C0F16ULL + (replica << 32));
   try {
     if (placement == "lattice") place_on_lattice(state, req, rng);
     else insert_randomly(state, req, rng);

@@ -39,7 +39,7 @@ std::string phase_detail(const State& s, const McEngine& e) {
 }  // namespace
 
 McRunner::McRunner(State& state, const McProtocol& protocol, bool quiet)
-    : state_(state), protocol_(protocol), engine_(state, RngState{protocol.seed, 0, 0, 4}), quiet_(quiet) {
+    : state_(state), protocol_(protocol), engine_(state, RngState{protocol.seed, protocol.replica, 0, 4}), quiet_(quiet) {
   engine_.set_field(protocol.field);
   tune_mark_ = sample_mark_ = engine_.counters();
   summary_["phases"] = nlohmann::json::array();

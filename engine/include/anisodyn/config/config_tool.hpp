@@ -12,6 +12,6 @@ namespace anisodyn {
 /// Builds the configuration described by `cfg`. With `existing`, the new particles are inserted
 /// randomly into that state (its box and species are kept; new species are appended).
 /// Every problem with the request is reported as an InputError naming the JSON path.
-State build_configuration(io::ConfigNode& cfg, const std::optional<State>& existing, std::uint64_t seed);
+State build_configuration(io::ConfigNode& cfg, const std::optional<State>& existing, std::uint64_t seed, std::uint64_t replica = 0);
 
 }  // namespace anisodyn

@@ -47,6 +47,7 @@ struct McPhase {
 
 struct McProtocol {
   std::uint64_t seed = 1;
+  std::uint64_t replica = 0;  // random stream of the seed (--replica K): independent replicas
   double target_acceptance = 0.35;
   std::int64_t tune_every = 100;
   std::int64_t sample_every = 10;

@@ -1,0 +1,219 @@
+"""Local execution of a campaign's jobs with N workers.
+
+A job is ready when its inputs are finished. It is skipped ("up-to-date") when its output exists
+and the stamp beside it records the same job id and the same SHA-256 of every input file;
+otherwise it runs `anisodyn-<tool> --config <job>.json --output <job>.h5 --input ... [--replica K]`
+from the repository root. An engine job interrupted earlier resumes from its checkpoint because the
+command is the same. A failed job is reported with its log path; jobs that need its output are
+blocked, the others go on.
+
+All children are started and reaped by the main thread. Each child gets SIGTERM if the runner dies
+(PR_SET_PDEATHSIG), even by SIGKILL, so the engines checkpoint instead of running on unattended.
+"""
+import ctypes
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+
+from .jobdb import atomic_write_text
+from .manifest import ENGINE_TOOLS
+
+PR_SET_PDEATHSIG = 1
+
+
+def _die_with_parent(parent_pid):
+    def setup():
+        try:
+            ctypes.CDLL("libc.so.6", use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGTERM)
+        except OSError:
+            pass
+        if os.getppid() != parent_pid:  # the runner died before prctl took effect
+            os._exit(130)
+    return setup
+
+
+def command(job, jobs, bin_dir, campaign):
+    cmd = [os.path.join(bin_dir, f"anisodyn-{job.tool}"), "--config", os.path.join(campaign, job.config),
+           "--output", os.path.join(campaign, job.output)]
+    for i in job.inputs:
+        cmd += ["--input", os.path.join(campaign, jobs[i].output)]
+    if job.replica is not None and job.tool in ENGINE_TOOLS:
+        cmd += ["--replica", str(job.replica)]
+    return cmd
+
+
+def stamp_of(job, jobs, db, campaign):
+    return {"job": job.id, "tool": job.tool,
+            "inputs": {jobs[i].output: db.sha256(os.path.join(campaign, jobs[i].output)) for i in job.inputs}}
+
+
+def up_to_date(job, jobs, db, campaign):
+    out, stamp_path = os.path.join(campaign, job.output), os.path.join(campaign, job.directory, job.stem + ".stamp.json")
+    if not (os.path.exists(out) and os.path.exists(stamp_path)):
+        return False
+    try:
+        with open(stamp_path) as f:
+            return json.load(f) == stamp_of(job, jobs, db, campaign)
+    except (OSError, json.JSONDecodeError):
+        return False
+
+
+def write_config(job, campaign):
+    os.makedirs(os.path.join(campaign, job.directory), exist_ok=True)
+    path = os.path.join(campaign, job.config)
+    text = json.dumps(job.params, indent=2, sort_keys=True) + "\n"
+    if not os.path.exists(path) or open(path).read() != text:  # same bytes on a resume
+        atomic_write_text(path, text)
+
+
+class Progress:
+    """Campaign progress on stderr: counts, elapsed time and an ETA from the mean duration of the
+    jobs of each stage finished so far (jobs run in parallel over the workers)."""
+
+    def __init__(self, study, total, workers, quiet):
+        self.study, self.total, self.workers, self.quiet = study, total, workers, quiet
+        self.t0, self.last = time.time(), 0.0
+        self.durations = {}
+
+    def eta(self, remaining_stages, running_elapsed):
+        known = [d for ds in self.durations.values() for d in ds]
+        if not known:
+            return None
+        mean_all = sum(known) / len(known)
+        work = 0.0
+        for stage in remaining_stages:
+            ds = self.durations.get(stage)
+            work += sum(ds) / len(ds) if ds else mean_all
+        work -= sum(running_elapsed)
+        return max(work, 0.0) / self.workers
+
+    def show(self, counts, remaining_stages, running_elapsed, force=False):
+        now = time.time()
+        if self.quiet or (not force and now - self.last < 2.0):
+            return
+        self.last = now
+        eta = self.eta(remaining_stages, running_elapsed)
+        eta_text = "?" if eta is None else _clock(eta)
+        print(f"[{self.study}] done {counts['done']}/{self.total} (up to date {counts['skipped']}), running {counts['running']}, "
+              f"failed {counts['failed']}, left {counts['left']}; elapsed {_clock(now - self.t0)}, ETA {eta_text}",
+              file=sys.stderr, flush=True)
+
+
+def _clock(s):
+    s = int(round(s))
+    return f"{s // 3600}:{s // 60 % 60:02d}:{s % 60:02d}" if s >= 3600 else f"{s // 60}:{s % 60:02d}"
+
+
+def run(jobs, selected, forced, db, bin_dir, campaign, repo_root, workers, study, quiet=False):
+    """Runs the selected job ids (inputs first). `forced` ids run even when up to date.
+    Returns (finished states by id, interrupted flag)."""
+    state = {}
+    for jid in jobs:
+        if jid not in selected:
+            state[jid] = "external"  # not part of this invocation: must already exist if needed
+    waiting = [jid for jid in jobs if jid in selected]
+    running = {}  # jid -> (Popen, start time, log files)
+    progress = Progress(study, len(waiting), workers, quiet)
+    interrupted = {"flag": False}
+
+    def on_signal(signum, _frame):
+        interrupted["flag"] = True
+        for proc, _, _ in running.values():
+            try:
+                proc.send_signal(signal.SIGTERM)
+            except ProcessLookupError:
+                pass
+
+    old = {s: signal.signal(s, on_signal) for s in (signal.SIGINT, signal.SIGTERM)}
+    counts = lambda: {"done": sum(1 for j in state if state[j] in ("done", "skipped") and j in selected),
+                      "skipped": sum(1 for j in state if state[j] == "skipped"),
+                      "running": len(running), "failed": sum(1 for j in state if state[j] == "failed"),
+                      "left": len(waiting)}
+
+    def inputs_state(job):
+        s = set()
+        for i in job.inputs:
+            st = state.get(i)
+            if st == "external":
+                s.add("done" if os.path.exists(os.path.join(campaign, jobs[i].output)) else "missing")
+            elif st in ("done", "skipped"):
+                s.add("done")
+            elif st in ("failed", "blocked", "interrupted"):
+                s.add("failed")
+            else:
+                s.add("pending")
+        return s
+
+    try:
+        while waiting or running:
+            launched = False
+            for jid in list(waiting):
+                if interrupted["flag"] or len(running) >= workers:
+                    break
+                job = jobs[jid]
+                ins = inputs_state(job)
+                if "pending" in ins:
+                    continue
+                waiting.remove(jid)
+                if "failed" in ins or "missing" in ins:
+                    state[jid] = "blocked"
+                    why = "an input job failed" if "failed" in ins else "an input is missing (run the stages before it)"
+                    db.update(jid, label=job.label, stage=job.stage, state="blocked", reason=why)
+                    if not quiet:
+                        print(f"[{study}] blocked: {job.label}: {why}", file=sys.stderr)
+                    continue
+                if jid not in forced and up_to_date(job, jobs, db, campaign):
+                    state[jid] = "skipped"
+                    db.update(jid, label=job.label, stage=job.stage, state="up-to-date", output=job.output)
+                    continue
+                write_config(job, campaign)
+                cmd = command(job, jobs, bin_dir, campaign)
+                out = open(os.path.join(campaign, job.log), "w")
+                err = open(os.path.join(campaign, job.err), "w")
+                proc = subprocess.Popen(cmd, stdout=out, stderr=err, cwd=repo_root, preexec_fn=_die_with_parent(os.getpid()))
+                running[jid] = (proc, time.time(), (out, err))
+                state[jid] = "running"
+                db.update(jid, label=job.label, stage=job.stage, state="running", started=time.time(), command=cmd,
+                          log=job.log, err=job.err, output=job.output)
+                db.save()
+                launched = True
+            finished = False
+            for jid, (proc, t_start, files) in list(running.items()):
+                rc = proc.poll()
+                if rc is None:
+                    continue
+                for f in files:
+                    f.close()
+                del running[jid]
+                job, seconds = jobs[jid], time.time() - t_start
+                if rc == 0:
+                    atomic_write_text(os.path.join(campaign, job.directory, job.stem + ".stamp.json"),
+                                      json.dumps(stamp_of(job, jobs, db, campaign), sort_keys=True))
+                    state[jid] = "done"
+                    progress.durations.setdefault(job.stage, []).append(seconds)
+                elif rc in (130, -signal.SIGTERM, -signal.SIGINT) and interrupted["flag"]:
+                    state[jid] = "interrupted"
+                else:
+                    state[jid] = "failed"
+                    print(f"[{study}] FAILED: {job.label} (exit {rc}); log: {os.path.join(campaign, job.err)}", file=sys.stderr)
+                db.update(jid, state=state[jid], exit_code=rc, seconds=round(seconds, 3), finished=time.time())
+                db.save()
+                finished = True
+            if interrupted["flag"]:
+                if not running:
+                    break
+                time.sleep(0.05)
+                continue
+            remaining = [jobs[j].stage for j in waiting] + [jobs[j].stage for j in running]
+            progress.show(counts(), remaining, [time.time() - t for _, t, _ in running.values()], force=finished)
+            if not launched and not finished:
+                time.sleep(0.05)
+    finally:
+        for s, h in old.items():
+            signal.signal(s, h)
+        db.save()
+    progress.show(counts(), [], [], force=True)
+    return state, interrupted["flag"]

@@ -1,0 +1,242 @@
+"""Manifest loading and validation. Every error names the manifest file and the JSON path.
+
+Schema (docs/manifests.md):
+  study        non-empty name, used as results/<study>/
+  description  text
+  defaults     {tool: {params}}: merged under the params of every stage of that tool
+  grid         {var: [values...]}: Cartesian product of the lists (scalars; each list non-empty)
+  zip          [[var, var, ...], ...]: groups of grid vars whose lists vary together (equal lengths)
+  replicas     integer >= 1 (default 1)
+  stages       [{name, tool, params, inputs, replicate, description}]
+  report       {title, scalars: [...], plots: [...]} (report.py)
+References in params: "${grid.x}" (a grid var), "${replica}" (the replica index, replicated stages
+only), "${study}". A string that is exactly one reference takes the value's type.
+"""
+import json
+import os
+import re
+
+REFERENCE = re.compile(r"\$\{([^}]*)\}")
+ENGINE_TOOLS = {"config", "mc", "dmc", "bd", "dpd", "lb"}  # replicated by default; take --replica K
+TOP_KEYS = {"study", "description", "defaults", "grid", "zip", "replicas", "stages", "report"}
+STAGE_KEYS = {"name", "tool", "params", "inputs", "replicate", "description"}
+NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]*$")
+
+
+class ManifestError(Exception):
+    def __init__(self, path, expected, got=None):
+        msg = f"at {path}: expected {expected}"
+        if got is not None:
+            text = json.dumps(got)
+            msg += f", got {text if len(text) <= 60 else text[:57] + '...'}"
+        super().__init__(msg)
+        self.path = path
+
+
+def load(path):
+    """The manifest as parsed JSON; ManifestError for an unreadable file or invalid JSON."""
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except OSError as e:
+        raise ManifestError("(file)", f"a readable manifest file ({e.strerror})")
+    except json.JSONDecodeError as e:
+        raise ManifestError(f"(line {e.lineno}, column {e.colno})", f"valid JSON ({e.msg})")
+
+
+def merge(base, over):
+    out = dict(base)
+    for k, v in over.items():
+        out[k] = merge(out[k], v) if isinstance(v, dict) and isinstance(out.get(k), dict) else v
+    return out
+
+
+def is_scalar(v):
+    return isinstance(v, (str, int, float, bool)) and v is not None
+
+
+def format_value(v):
+    """The text of a grid value in paths and labels: 1 → "1", 0.15 → "0.15", "on" → "on"."""
+    return v if isinstance(v, str) else json.dumps(v)
+
+
+def validate(m, tool_exists):
+    """Checks the manifest against the schema; `tool_exists(tool)` says whether anisodyn-<tool> exists.
+    Returns the stages in a topological order of their inputs."""
+    if not isinstance(m, dict):
+        raise ManifestError("(top level)", "a JSON object", m)
+    for k in m:
+        if k not in TOP_KEYS and not k.startswith("_"):
+            raise ManifestError(k, "one of " + ", ".join(sorted(TOP_KEYS)) + " (unknown key)")
+    study = m.get("study")
+    if not isinstance(study, str) or not NAME.match(study):
+        raise ManifestError("study", "a study name of letters, digits, '_', '.', '-'", study)
+    if not isinstance(m.get("description", ""), str):
+        raise ManifestError("description", "a text", m.get("description"))
+    validate_grid(m)
+    replicas = m.get("replicas", 1)
+    if isinstance(replicas, bool) or not isinstance(replicas, int) or replicas < 1:
+        raise ManifestError("replicas", "an integer >= 1", replicas)
+    defaults = m.get("defaults", {})
+    if not isinstance(defaults, dict):
+        raise ManifestError("defaults", "an object {tool: {params}}", defaults)
+    for tool, block in defaults.items():
+        if not isinstance(block, dict):
+            raise ManifestError(f"defaults.{tool}", "an object of parameters for that tool", block)
+    order = validate_stages(m, tool_exists)
+    if "report" in m and not isinstance(m["report"], dict):
+        raise ManifestError("report", "an object", m["report"])
+    return order
+
+
+def validate_grid(m):
+    grid = m.get("grid", {})
+    if not isinstance(grid, dict):
+        raise ManifestError("grid", "an object {variable: [values]}", grid)
+    for var, values in grid.items():
+        if not NAME.match(var):
+            raise ManifestError(f"grid.{var}", "a variable name of letters, digits, '_', '.', '-'")
+        if not isinstance(values, list) or not values:
+            raise ManifestError(f"grid.{var}", "a non-empty list of values", values)
+        for i, v in enumerate(values):
+            if not is_scalar(v):
+                raise ManifestError(f"grid.{var}[{i}]", "a number, string or boolean", v)
+            if "/" in format_value(v) or format_value(v) in ("", ".", ".."):
+                raise ManifestError(f"grid.{var}[{i}]", "a value usable in a directory name (no '/')", v)
+        if len({format_value(v) for v in values}) != len(values):
+            raise ManifestError(f"grid.{var}", "distinct values", values)
+    zipped = m.get("zip", [])
+    if not isinstance(zipped, list):
+        raise ManifestError("zip", "a list of groups of grid variables", zipped)
+    seen = set()
+    for g, group in enumerate(zipped):
+        if not isinstance(group, list) or len(group) < 2:
+            raise ManifestError(f"zip[{g}]", "a list of at least two grid variables", group)
+        for j, var in enumerate(group):
+            if var not in grid:
+                raise ManifestError(f"zip[{g}][{j}]", "the name of a grid variable", var)
+            if var in seen:
+                raise ManifestError(f"zip[{g}][{j}]", "each grid variable in at most one zip group", var)
+            seen.add(var)
+            if len(grid[var]) != len(grid[group[0]]):
+                raise ManifestError(f"zip[{g}][{j}]", f"a list as long as grid.{group[0]} ({len(grid[group[0]])} values)",
+                                    len(grid[var]))
+
+
+def validate_stages(m, tool_exists):
+    stages = m.get("stages")
+    if not isinstance(stages, list) or not stages:
+        raise ManifestError("stages", "a non-empty list of stages", stages)
+    index = {}
+    for i, st in enumerate(stages):
+        p = f"stages[{i}]"
+        if not isinstance(st, dict):
+            raise ManifestError(p, "an object {name, tool, params, inputs}", st)
+        for k in st:
+            if k not in STAGE_KEYS:
+                raise ManifestError(f"{p}.{k}", "one of " + ", ".join(sorted(STAGE_KEYS)) + " (unknown key)")
+        name = st.get("name")
+        if not isinstance(name, str) or not NAME.match(name):
+            raise ManifestError(f"{p}.name", "a stage name of letters, digits, '_', '.', '-'", name)
+        if name in index:
+            raise ManifestError(f"{p}.name", "a unique stage name", name)
+        index[name] = i
+        tool = st.get("tool")
+        if not isinstance(tool, str) or not NAME.match(tool) or not tool_exists(tool):
+            raise ManifestError(f"{p}.tool", "the name of an anisodyn tool (an executable anisodyn-<tool>)", tool)
+        if not isinstance(st.get("params", {}), dict):
+            raise ManifestError(f"{p}.params", "an object", st.get("params"))
+        if not isinstance(st.get("replicate", True), bool):
+            raise ManifestError(f"{p}.replicate", "true or false", st.get("replicate"))
+        inputs = st.get("inputs", [])
+        if not isinstance(inputs, list):
+            raise ManifestError(f"{p}.inputs", "a list of stage names", inputs)
+    for i, st in enumerate(stages):
+        for j, inp in enumerate(st.get("inputs", [])):
+            if inp not in index:
+                raise ManifestError(f"stages[{i}].inputs[{j}]", "the name of a stage of this manifest", inp)
+            if inp == st["name"]:
+                raise ManifestError(f"stages[{i}].inputs[{j}]", "another stage (a stage cannot read its own output)", inp)
+    order = topological_order(stages, index)
+    grid = m.get("grid", {})
+    for i, st in enumerate(stages):
+        params = merge(m.get("defaults", {}).get(st["tool"], {}), st.get("params", {}))
+        check_references(params, f"stages[{i}].params", grid, replicated(st, m))
+    return order
+
+
+def topological_order(stages, index):
+    """Stage indices in an order where every stage follows its inputs; a cycle is a ManifestError."""
+    state, order = {}, []
+
+    def visit(i, trail):
+        if state.get(i) == "done":
+            return
+        if state.get(i) == "active":
+            names = [stages[k]["name"] for k in trail[trail.index(i):]] + [stages[i]["name"]]
+            raise ManifestError(f"stages[{i}].inputs", "stage inputs without a cycle; found " + " -> ".join(names))
+        state[i] = "active"
+        for inp in stages[i].get("inputs", []):
+            visit(index[inp], trail + [i])
+        state[i] = "done"
+        order.append(i)
+
+    for i in range(len(stages)):
+        visit(i, [])
+    return order
+
+
+def replicated(stage, m=None):
+    """Whether the stage runs once per replica: engines by default, analysis stages aggregate."""
+    return stage.get("replicate", stage["tool"] in ENGINE_TOOLS)
+
+
+def check_references(value, path, grid, is_replicated):
+    if isinstance(value, dict):
+        for k, v in value.items():
+            check_references(v, f"{path}.{k}", grid, is_replicated)
+    elif isinstance(value, list):
+        for k, v in enumerate(value):
+            check_references(v, f"{path}[{k}]", grid, is_replicated)
+    elif isinstance(value, str):
+        for ref in REFERENCE.findall(value):
+            if ref.startswith("grid."):
+                if ref[5:] not in grid:
+                    raise ManifestError(path, f"a reference to a grid variable (${{grid.<var>}} with <var> in: "
+                                              f"{', '.join(grid) or 'none, the manifest has no grid'})", value)
+            elif ref == "replica":
+                if not is_replicated:
+                    raise ManifestError(path, "${replica} only in a replicated stage", value)
+            elif ref != "study":
+                raise ManifestError(path, "a reference ${grid.<var>}, ${replica} or ${study}", value)
+
+
+def referenced_vars(value):
+    """Grid variables referenced anywhere in value."""
+    if isinstance(value, dict):
+        return set().union(*[referenced_vars(v) for v in value.values()]) if value else set()
+    if isinstance(value, list):
+        return set().union(*[referenced_vars(v) for v in value]) if value else set()
+    if isinstance(value, str):
+        return {r[5:] for r in REFERENCE.findall(value) if r.startswith("grid.")}
+    return set()
+
+
+def substitute(value, point, replica, study):
+    """value with every reference replaced; a string that is exactly one reference takes its type."""
+    if isinstance(value, dict):
+        return {k: substitute(v, point, replica, study) for k, v in value.items()}
+    if isinstance(value, list):
+        return [substitute(v, point, replica, study) for v in value]
+    if not isinstance(value, str):
+        return value
+
+    def lookup(ref):
+        if ref.startswith("grid."):
+            return point[ref[5:]]
+        return replica if ref == "replica" else study
+
+    whole = REFERENCE.fullmatch(value)
+    if whole:
+        return lookup(whole.group(1))
+    return REFERENCE.sub(lambda mo: format_value(lookup(mo.group(1))), value)
