@@ -1,0 +1,338 @@
+"""The study report: results/<study>/report/summary.md, CSV tables and PNG plots (docs/manifests.md).
+
+Reads the analysis outputs of the campaign (HDF5 tables and scalars with units and definitions),
+draws the configured plots with the theory overlays of spec 70, and lists every scalar measured.
+Written into report.partial/ and renamed, so a report is either complete or absent."""
+import csv
+import fnmatch
+import json
+import math
+import os
+import shutil
+import sys
+import time
+
+from .expand import grid_points
+from .manifest import format_value
+
+EXIT_FAILED = 3
+
+
+def _imports():
+    import h5py  # noqa: F401
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt  # noqa: F401
+    import numpy  # noqa: F401
+
+
+def read_scalars(path):
+    """{name: (value, error, units, definition)} of an analysis output."""
+    import h5py
+    out = {}
+    with h5py.File(path, "r") as f:
+        if "scalars" not in f:
+            return out
+        for name, ds in f["scalars"].items():
+            v = ds[...]
+            out[name] = (float(v[0]), float(v[1]) if v.shape[0] > 1 else float("nan"),
+                         _attr(ds, "units"), _attr(ds, "definition"))
+    return out
+
+
+def read_table(path, table):
+    import h5py
+    with h5py.File(path, "r") as f:
+        if table not in f:
+            raise KeyError(f"{path} has no table '{table}' (tables: {', '.join(k for k in f if k not in ('scalars',) and hasattr(f[k], 'keys'))})")
+        return {k: f[table][k][...] for k in f[table]}, {k: _attr(f[table][k], "units") for k in f[table]}
+
+
+def _attr(obj, name):
+    v = obj.attrs.get(name, "")
+    return v.decode() if isinstance(v, bytes) else str(v)
+
+
+def point_text(point):
+    return ", ".join(f"{k} = {format_value(v)}" for k, v in point.items()) or "(single point)"
+
+
+def fmt(value, error):
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return "n/a"
+    if error is None or math.isnan(error) or error == 0:
+        return f"{value:.5g}"
+    return f"{value:.5g} ± {error:.2g}"
+
+
+class ReportError(Exception):
+    pass
+
+
+def generate(m, jobs, by_stage, campaign, quiet=False):
+    try:
+        _imports()
+    except ImportError as e:
+        print(f"anisodyn-run: error: the report needs Python 3 with h5py, numpy and matplotlib ({e}); "
+              "run scripts/setup, or use --no-report", file=sys.stderr)
+        return EXIT_FAILED
+    final = os.path.join(campaign, "report")
+    work = final + ".partial"
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    try:
+        lines = Report(m, jobs, by_stage, campaign, work).write()
+    except (ReportError, KeyError, OSError) as e:
+        shutil.rmtree(work, ignore_errors=True)
+        print(f"anisodyn-run: error: report: {e}", file=sys.stderr)
+        return EXIT_FAILED
+    with open(os.path.join(work, "summary.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    shutil.rmtree(final, ignore_errors=True)
+    os.replace(work, final)
+    if not quiet:
+        print(f"[{m['study']}] report: {os.path.join(final, 'summary.md')}", file=sys.stderr)
+    return 0
+
+
+class Report:
+    def __init__(self, m, jobs, by_stage, campaign, out):
+        self.m, self.jobs, self.by_stage, self.campaign, self.out = m, jobs, by_stage, campaign, out
+        self.spec = m.get("report", {})
+
+    def stage_jobs(self, stage, where="report"):
+        if stage not in self.by_stage:
+            raise ReportError(f"{where}: no stage '{stage}' in the manifest")
+        return [self.jobs[j] for j in self.by_stage[stage]]
+
+    def path(self, job):
+        return os.path.join(self.campaign, job.output)
+
+    def write(self):
+        m = self.m
+        points = len(grid_points(m))
+        lines = [f"# {self.spec.get('title', m['study'])}", "", m.get("description", ""), "",
+                 f"Study `{m['study']}`; generated {time.strftime('%Y-%m-%d %H:%M:%S')} from {len(self.jobs)} jobs "
+                 f"({points} grid point{'s' if points != 1 else ''} × {m.get('replicas', 1)} replicas). Values are means ± "
+                 "standard errors over replicas (docs/analysis.md).", ""]
+        for k, block in enumerate(self.spec.get("scalars", [])):
+            lines += self.scalar_table(block, k)
+        plots = self.spec.get("plots", [])
+        if plots:
+            lines += ["## Plots", ""]
+        for k, plot in enumerate(plots):
+            lines += self.plot(plot, k)
+        lines += self.all_scalars()
+        return lines
+
+    # --- tables ---------------------------------------------------------------------------
+    def scalar_table(self, block, k):
+        where = f"report.scalars[{k}]"
+        jobs = self.stage_jobs(block.get("stage"), where)
+        patterns = block.get("names", ["*"])
+        rows, names, units = [], [], {}
+        for job in jobs:
+            scalars = read_scalars(self.path(job))
+            chosen = [n for n in scalars if any(fnmatch.fnmatch(n, p) for p in patterns)]
+            for n in chosen:
+                if n not in names:
+                    names.append(n)
+                units[n] = scalars[n][2]
+            rows.append((job.point, scalars))
+        if not names:
+            raise ReportError(f"{where}.names: no scalar of stage '{block['stage']}' matches {patterns}")
+        grid_vars = list(self.m.get("grid", {}))
+        csv_name = f"{block.get('name', block['stage'] + '_scalars')}.csv"
+        with open(os.path.join(self.out, csv_name), "w", newline="") as f:
+            w = csv.writer(f)
+            w.writerow(grid_vars + sum([[n, n + "_se"] for n in names], []))
+            w.writerow([""] * len(grid_vars) + sum([[units[n], units[n]] for n in names], []))
+            for point, scalars in rows:
+                w.writerow([format_value(point[v]) if v in point else "" for v in grid_vars] +
+                           sum([[scalars[n][0], scalars[n][1]] if n in scalars else ["", ""] for n in names], []))
+        title = block.get("caption", f"Scalars of stage {block['stage']}")
+        lines = [f"## {title}", "", f"Table: [{csv_name}]({csv_name})", ""]
+        header = [v for v in grid_vars if any(v in p for p, _ in rows)] or ["point"]
+        lines.append("| " + " | ".join(header + [f"{n} ({units[n]})" for n in names]) + " |")
+        lines.append("|" + "---|" * (len(header) + len(names)))
+        for point, scalars in rows:
+            cells = [format_value(point[v]) if v in point else "" for v in header] if header != ["point"] else ["—"]
+            cells += [fmt(*scalars[n][:2]) if n in scalars else "" for n in names]
+            lines.append("| " + " | ".join(cells) + " |")
+        return lines + [""]
+
+    def all_scalars(self):
+        lines = ["## Every scalar measured", ""]
+        for st in self.m["stages"]:
+            if st["tool"] in ("config", "mc", "dmc", "hydro", "bd", "dpd", "lb"):
+                continue
+            for job in self.stage_jobs(st["name"]):
+                try:
+                    scalars = read_scalars(self.path(job))
+                except OSError:
+                    continue
+                if not scalars:
+                    continue
+                lines += [f"### {st['name']} — {point_text(job.point)}", "", "| scalar | value ± SE | units | definition |", "|---|---|---|---|"]
+                for n, (v, e, u, d) in scalars.items():
+                    lines.append(f"| {n} | {fmt(v, e)} | {u} | {d.replace('|', '/')} |")
+                lines.append("")
+        return lines
+
+    # --- plots ----------------------------------------------------------------------------
+    def plot(self, spec, k):
+        import matplotlib.pyplot as plt
+        where = f"report.plots[{k}]"
+        name = spec.get("name", f"plot{k}")
+        fig, ax = plt.subplots(figsize=(6.4, 4.6))
+        if "table" in spec:
+            self.curve_plot(ax, spec, where)
+        elif "scalar" in spec:
+            self.scalar_plot(ax, spec, where)
+        else:
+            plt.close(fig)
+            raise ReportError(f"{where}: expected 'table' (curves) or 'scalar' (against a grid variable)")
+        log = spec.get("log", "")
+        if "x" in log:
+            ax.set_xscale("log")
+        if "y" in log:
+            ax.set_yscale("log")
+        ax.set_xlabel(spec.get("xlabel", spec.get("x", "")))
+        ax.set_ylabel(spec.get("ylabel", ", ".join(spec.get("y", [spec.get("scalar", "")])) if "y" in spec else spec.get("scalar", "")))
+        ax.set_title(spec.get("title", name))
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize=7)
+        fig.tight_layout()
+        png = f"{name}.png"
+        fig.savefig(os.path.join(self.out, png), dpi=110)
+        plt.close(fig)
+        return [f"### {spec.get('title', name)}", "", f"![{name}]({png})", ""] + ([spec["caption"], ""] if "caption" in spec else [])
+
+    def selected_jobs(self, spec, where):
+        jobs = self.stage_jobs(spec.get("stage"), where)
+        sel = spec.get("select", {})
+        return [j for j in jobs if all(format_value(j.point.get(v)) == format_value(val) for v, val in sel.items() if v in j.point)]
+
+    def curve_plot(self, ax, spec, where):
+        import numpy as np
+        ys = spec.get("y")
+        if not isinstance(ys, list) or not ys:
+            raise ReportError(f"{where}.y: expected a list of column names")
+        jobs = self.selected_jobs(spec, where)
+        rows = []
+        for job in jobs:
+            data, _ = read_table(self.path(job), spec["table"])
+            x = spec.get("x", "time")
+            if x not in data:
+                raise ReportError(f"{where}.x: table '{spec['table']}' has no column '{x}' (columns: {', '.join(data)})")
+            for y in ys:
+                if y not in data:
+                    raise ReportError(f"{where}.y: table '{spec['table']}' has no column '{y}' (columns: {', '.join(data)})")
+                label = y if len(jobs) == 1 else f"{y} [{point_text(job.point)}]"
+                err = data.get(y + "_se") if spec.get("errors", True) else None
+                ok = np.isfinite(data[x]) & np.isfinite(data[y])
+                if err is not None:
+                    ax.errorbar(data[x][ok], data[y][ok], yerr=np.nan_to_num(err[ok]), label=label, marker=".", ms=3, lw=1, capsize=1.5)
+                else:
+                    ax.plot(data[x][ok], data[y][ok], label=label, marker=".", ms=3, lw=1)
+                rows.append((job, data[x][ok]))
+        for t in spec.get("theory", []):
+            for job, xs in rows[:1] if t.get("kind") != "free_diffusion" else self._unique_points(rows):
+                self.theory(ax, t, job, xs, where)
+
+    @staticmethod
+    def _unique_points(rows):
+        seen, out = set(), []
+        for job, xs in rows:
+            if job.id not in seen:
+                seen.add(job.id)
+                out.append((job, xs))
+        return out
+
+    def scalar_plot(self, ax, spec, where):
+        import numpy as np
+        x, series = spec.get("x"), spec.get("series")
+        grid = self.m.get("grid", {})
+        for key, var in (("x", x), ("series", series)):
+            if var is not None and var not in grid:
+                raise ReportError(f"{where}.{key}: expected a grid variable ({', '.join(grid) or 'none'})")
+        groups = {}
+        for job in self.selected_jobs(spec, where):
+            scalars = read_scalars(self.path(job))
+            if spec["scalar"] not in scalars:
+                raise ReportError(f"{where}.scalar: stage '{spec['stage']}' has no scalar '{spec['scalar']}' ({', '.join(scalars)})")
+            v, e = scalars[spec["scalar"]][:2]
+            groups.setdefault(format_value(job.point.get(series)) if series else "", []).append((float(job.point.get(x, 0)), v, e))
+        for label, pts in groups.items():
+            pts.sort()
+            a = np.array(pts)
+            ax.errorbar(a[:, 0], a[:, 1], yerr=np.nan_to_num(a[:, 2]), marker="o", ms=4, capsize=2,
+                        label=f"{series} = {label}" if series else spec["scalar"])
+        xs = np.array(sorted({p[0] for pts in groups.values() for p in pts}))
+        for t in spec.get("theory", []):
+            self.theory(ax, t, None, xs, where)
+
+    # --- theory overlays (spec 70) ---------------------------------------------------------
+    def theory(self, ax, t, job, xs, where):
+        import numpy as np
+        kind = t.get("kind")
+        if len(xs) == 0:
+            return
+        lo, hi = float(np.min(xs[xs > 0])) if np.any(xs > 0) else float(np.min(xs)), float(np.max(xs))
+        grid = np.geomspace(lo, hi, 200) if lo > 0 else np.linspace(lo, hi, 200)
+        style = dict(color="k", lw=1, ls="--")
+        if kind == "constant":
+            ax.axhline(t["value"], label=t.get("label", f"theory: {t['value']}"), **style)
+        elif kind == "power":
+            ax.plot(grid, t["prefactor"] * grid ** t["exponent"], label=t.get("label", f"∝ x^{t['exponent']}"), **style)
+        elif kind == "exponential":
+            ax.plot(grid, t.get("amplitude", 1.0) * np.exp(-grid / t["tau"]), label=t.get("label", f"exp(-t/{t['tau']:.3g})"), **style)
+        elif kind == "free_diffusion":
+            slope = 2.0 * self.free_diffusivity(job, t, where)
+            suffix = "" if job is None or not job.point else f" [{point_text(job.point)}]"
+            ax.plot(grid, slope * grid, label=t.get("label", f"free diffusion, {t.get('component', 'tot')}") + suffix, **style)
+        elif kind == "wertheim":
+            scalars = read_scalars(self.path(job))
+            name = t.get("scalar", "p_b")
+            match = [n for n in scalars if fnmatch.fnmatch(n, name)]
+            if not match:
+                raise ReportError(f"{where}.theory: no scalar '{name}' for the Wertheim line")
+            pb = scalars[match[0]][0]
+            ls = np.arange(max(1, int(lo)), int(hi) + 1)
+            ax.plot(ls, (1 - pb) ** 2 * pb ** (ls - 1), label=t.get("label", f"Wertheim, p_b = {pb:.3g}"), **style)
+        else:
+            raise ReportError(f"{where}.theory: unknown kind '{kind}' (constant, power, exponential, free_diffusion, wertheim)")
+
+    def free_diffusivity(self, job, t, where):
+        """D of the free-particle line from the species table of an engine trajectory upstream."""
+        import h5py
+        species, component = t.get("species"), t.get("component", "tot")
+        for path in self.upstream_trajectories(job):
+            with h5py.File(path, "r") as f:
+                if "parameters/species" not in f:
+                    continue
+                g = f["parameters/species"]
+                names = [n.decode() if isinstance(n, bytes) else str(n) for n in g["name"][...]]
+                if species not in names:
+                    raise ReportError(f"{where}.theory.species: '{species}' is not a species of {path} ({', '.join(names)})")
+                d = g["D_trans"][names.index(species)]
+                if component == "tot":
+                    return float(sum(d))
+                if component in ("x", "y", "z"):
+                    return float(sum(d) / 3.0)
+                if component in ("T", "W", "L"):
+                    return float(d["TWL".index(component)])
+                raise ReportError(f"{where}.theory.component: expected tot, x, y, z, T, W or L")
+        raise ReportError(f"{where}.theory: no engine trajectory upstream of stage '{job.stage}' has a species table")
+
+    def upstream_trajectories(self, job):
+        frontier, seen = list(job.inputs), set()
+        while frontier:
+            jid = frontier.pop(0)
+            if jid in seen:
+                continue
+            seen.add(jid)
+            up = self.jobs[jid]
+            if up.tool in ("dmc", "mc", "bd", "dpd", "lb", "config"):
+                yield self.path(up)
+            frontier += up.inputs
