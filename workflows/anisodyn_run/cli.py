@@ -26,6 +26,7 @@ def parse_args(argv):
     ap.add_argument("--no-report", action="store_true", help="do not write the report")
     ap.add_argument("--bin", default=os.environ.get("ANISODYN_BIN"), help="directory of the anisodyn executables")
     ap.add_argument("--results", default=os.environ.get("ANISODYN_RESULTS"), help="results directory (default: <repo>/results)")
+    ap.add_argument("--campaign", help="campaign directory (default: <results>/<study>)")
     ap.add_argument("--quiet", action="store_true")
     return ap.parse_args(argv)
 
@@ -55,7 +56,7 @@ def main(argv=None):
         print(f"anisodyn-run: error: {where}: {e}", file=sys.stderr)
         return EXIT_BAD_INPUT
     jobs, by_stage = expand.expand(m, order)
-    campaign = os.path.join(results, m["study"])
+    campaign = os.path.abspath(args.campaign) if args.campaign else os.path.join(results, m["study"])
     if args.dry_run:
         return dry_run(m, jobs, by_stage, campaign)
     if args.status:
