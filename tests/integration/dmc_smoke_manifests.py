@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Runs every manifest in manifests/smoke/ (the DMC systems of spec 10 at the reduced sizes of
-spec 60) with the minimal runner and checks that each ends in a readable DMC trajectory: frames with
+spec 60) with anisodyn-run and checks that each ends in a readable DMC trajectory: frames with
 finite positions, unit quaternions and increasing Brownian time, acceptances in [0, 1], and the
 summary's realised balance within 5% of 1 when balancing was on (a sanity bound: the smoke runs'
 short preliminary stages and brief equilibration leave ~1% noise and drift; the 0.5% acceptance
@@ -20,13 +20,13 @@ failures = 0
 for manifest in sorted(glob.glob(os.path.join(source, "manifests", "smoke", "*.json"))):
     study = json.load(open(manifest))["study"]
     t0 = time.time()
-    r = subprocess.run([sys.executable, os.path.join(source, "workflows", "run_manifest.py"), "--bin", bin_dir,
-                        "--results", tmp, "--force", manifest], capture_output=True, text=True)
+    r = subprocess.run([sys.executable, os.path.join(source, "workflows", "anisodyn-run"), "--bin", bin_dir,
+                        "--results", tmp, "--from", "config", "--jobs", "1", "--quiet", manifest], capture_output=True, text=True)
     if r.returncode != 0:
         print(f"FAIL {study}: exit {r.returncode}\n{r.stderr[-2000:]}")
         failures += 1
         continue
-    path = os.path.join(tmp, study, "dmc.h5")
+    path = os.path.join(tmp, study, "dmc", "dmc-r0.h5")
     with h5py.File(path) as f:
         pos = f["particles/all/position/value"][...]
         q = f["particles/all/orientation/value"][...]
@@ -38,7 +38,7 @@ for manifest in sorted(glob.glob(os.path.join(source, "manifests", "smoke", "*.j
         if not np.allclose(np.linalg.norm(q, axis=2), 1.0, atol=1e-9): problems.append("quaternions not normalised")
         if not np.all(np.diff(t) > 0): problems.append("frame times do not increase")
         if not (np.all(acc >= 0) and np.all(acc <= 1)): problems.append("acceptance outside [0, 1]")
-    summary = json.load(open(os.path.join(tmp, study, "dmc.log")))
+    summary = json.load(open(os.path.join(tmp, study, "dmc", "dmc-r0.log")))
     if summary.get("balance_mode") == "equilibrium" and len(summary["species"]) > 1:
         for sp in summary["species"]:
             if abs(sp["realised_balance"] - 1) > 0.05:

@@ -30,12 +30,13 @@ class Job:
     replica: object              # int, or None for a stage that is not replicated
     inputs: list                 # ids of input jobs, in the order of the stage's inputs
     directory: str               # relative to the campaign directory
-    stem: str
+    stem: str                    # <stage>[-r<K>]: the configuration, logs and stamp are <stem>.json, ...
+    filename: str                # the output: <stem>.h5, or the stage's "output" name (-r<K> before its first dot)
     downstream: list = field(default_factory=list)
 
     @property
     def output(self):
-        return os.path.join(self.directory, self.stem + ".h5")
+        return os.path.join(self.directory, self.filename)
 
     @property
     def config(self):
@@ -101,6 +102,13 @@ def job_id(tool, params, replica, input_ids):
     return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
+def output_name(stage, replica):
+    if "output" not in stage:
+        return (stage["name"] if replica is None else f"{stage['name']}-r{replica}") + ".h5"
+    base, dot, ext = stage["output"].partition(".")
+    return stage["output"] if replica is None else f"{base}-r{replica}{dot}{ext}"
+
+
 def expand(m, order):
     """All jobs, keyed by id, in an order where inputs come first; and the jobs of each stage."""
     stages = m["stages"]
@@ -134,7 +142,8 @@ def expand(m, order):
                     continue
                 directory = os.path.join(st["name"], *[f"{v}={format_value(own[v])}" for v in own])
                 stem = st["name"] if r is None else f"{st['name']}-r{r}"
-                jobs[jid] = Job(jid, st["name"], st["tool"], params, own, r, input_ids, directory, stem)
+                filename = output_name(st, r)
+                jobs[jid] = Job(jid, st["name"], st["tool"], params, own, r, input_ids, directory, stem, filename)
                 by_stage.setdefault(st["name"], []).append(jid)
     for job in jobs.values():
         for inp in job.inputs:

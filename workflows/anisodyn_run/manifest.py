@@ -19,7 +19,7 @@ import re
 REFERENCE = re.compile(r"\$\{([^}]*)\}")
 ENGINE_TOOLS = {"config", "mc", "dmc", "bd", "dpd", "lb"}  # replicated by default; take --replica K
 TOP_KEYS = {"study", "description", "defaults", "grid", "zip", "replicas", "stages", "report"}
-STAGE_KEYS = {"name", "tool", "params", "inputs", "replicate", "description"}
+STAGE_KEYS = {"name", "tool", "params", "inputs", "replicate", "description", "output"}
 NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]*$")
 
 
@@ -84,8 +84,7 @@ def validate(m, tool_exists):
         if not isinstance(block, dict):
             raise ManifestError(f"defaults.{tool}", "an object of parameters for that tool", block)
     order = validate_stages(m, tool_exists)
-    if "report" in m and not isinstance(m["report"], dict):
-        raise ManifestError("report", "an object", m["report"])
+    validate_report(m)
     return order
 
 
@@ -148,6 +147,9 @@ def validate_stages(m, tool_exists):
             raise ManifestError(f"{p}.params", "an object", st.get("params"))
         if not isinstance(st.get("replicate", True), bool):
             raise ManifestError(f"{p}.replicate", "true or false", st.get("replicate"))
+        out = st.get("output", "x.h5")
+        if not isinstance(out, str) or not NAME.match(out) or "." not in out:
+            raise ManifestError(f"{p}.output", "a plain file name with an extension for the stage's output (default <name>.h5)", out)
         inputs = st.get("inputs", [])
         if not isinstance(inputs, list):
             raise ManifestError(f"{p}.inputs", "a list of stage names", inputs)
@@ -240,3 +242,48 @@ def substitute(value, point, replica, study):
     if whole:
         return lookup(whole.group(1))
     return REFERENCE.sub(lambda mo: format_value(lookup(mo.group(1))), value)
+
+
+THEORY_KINDS = {"constant", "power", "exponential", "free_diffusion", "wertheim"}
+
+
+def validate_report(m):
+    """The report block's structure (names of tables, columns and scalars are checked when the
+    report is written, since they exist only in the outputs)."""
+    rep = m.get("report", {})
+    if not isinstance(rep, dict):
+        raise ManifestError("report", "an object {title, scalars, plots}", rep)
+    for k in rep:
+        if k not in ("title", "scalars", "plots"):
+            raise ManifestError(f"report.{k}", "one of title, scalars, plots (unknown key)")
+    stages = {st["name"] for st in m["stages"]}
+    grid = m.get("grid", {})
+    for key in ("scalars", "plots"):
+        items = rep.get(key, [])
+        if not isinstance(items, list):
+            raise ManifestError(f"report.{key}", "a list", items)
+        for i, item in enumerate(items):
+            p = f"report.{key}[{i}]"
+            if not isinstance(item, dict):
+                raise ManifestError(p, "an object", item)
+            if item.get("stage") not in stages:
+                raise ManifestError(f"{p}.stage", "the name of a stage of this manifest", item.get("stage"))
+            if key == "scalars":
+                if not isinstance(item.get("names", ["*"]), list):
+                    raise ManifestError(f"{p}.names", "a list of scalar names (wildcards allowed)", item.get("names"))
+                continue
+            if ("table" in item) == ("scalar" in item):
+                raise ManifestError(p, "either 'table' (curves against a column) or 'scalar' (against a grid variable)")
+            if "table" in item and (not isinstance(item.get("y"), list) or not item["y"]):
+                raise ManifestError(f"{p}.y", "a non-empty list of column names", item.get("y"))
+            if "scalar" in item:
+                for axis in ("x", "series"):
+                    if (axis == "x" or axis in item) and item.get(axis) not in grid:
+                        raise ManifestError(f"{p}.{axis}", "a grid variable (" + (", ".join(grid) or "the manifest has none") + ")",
+                                            item.get(axis))
+            if not isinstance(item.get("log", ""), str) or set(item.get("log", "")) - set("xy"):
+                raise ManifestError(f"{p}.log", "'x', 'y', 'xy' or ''", item.get("log"))
+            for j, t in enumerate(item.get("theory", [])):
+                if not isinstance(t, dict) or t.get("kind") not in THEORY_KINDS:
+                    raise ManifestError(f"{p}.theory[{j}].kind", "one of " + ", ".join(sorted(THEORY_KINDS)),
+                                        t.get("kind") if isinstance(t, dict) else t)

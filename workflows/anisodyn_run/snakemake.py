@@ -31,10 +31,12 @@ default-resources:
 """
 
 
-def rule_pattern(job, stage_vars, index):
+def rule_patterns(job, stage_vars, index):
+    """(pattern of the stem, pattern of the output) with wildcards for grid values and the replica."""
     parts = [job.stage] + [f"{v}={{g{index[v]}}}" for v in stage_vars]
     stem = job.stage if job.replica is None else f"{job.stage}-r{{replica}}"
-    return "/".join(parts + [stem])
+    filename = job.filename if job.replica is None else job.filename.replace(f"-r{job.replica}", "-r{replica}", 1)
+    return "/".join(parts + [stem]), "/".join(parts + [filename])
 
 
 def emit(m, jobs, by_stage, bin_dir, repo_root, out_dir, manifest_path):
@@ -69,12 +71,12 @@ def emit(m, jobs, by_stage, bin_dir, repo_root, out_dir, manifest_path):
         if st["name"] not in by_stage:
             continue
         example = jobs[by_stage[st["name"]][0]]
-        pattern = rule_pattern(example, deps[st["name"]], grid_index)
+        stem, output = rule_patterns(example, deps[st["name"]], grid_index)
         lines += [f"rule {st['name'].replace('-', '_').replace('.', '_')}:",
-                  f"    output: '{pattern}.h5'",
-                  f"    input: lambda wc: job('{pattern}.h5')(wc)['inputs']",
-                  f"    log: out='{pattern}.log', err='{pattern}.err'",
-                  f"    params: cmd=lambda wc: job('{pattern}.h5')(wc)['cmd']",
+                  f"    output: '{output}'",
+                  f"    input: lambda wc: job('{output}')(wc)['inputs']",
+                  f"    log: out='{stem}.log', err='{stem}.err'",
+                  f"    params: cmd=lambda wc: job('{output}')(wc)['cmd']",
                   "    resources: runtime=1440" if st["tool"] in ("mc", "dmc", "bd", "dpd", "lb") else "    resources: runtime=60",
                   "    shell: '{params.cmd} > {log.out} 2> {log.err}'", ""]
     if m.get("report"):

@@ -1,0 +1,1 @@
+anisodyn_add_script_test(runner_bad_manifests runner_bad_manifests.py)
