@@ -35,6 +35,10 @@ def cycles(job):
         return total
     if job.tool == "dmc":
         total = p.get("cycles", 0)
+        if not total and "time" in p and p.get("time_step"):
+            # a run given in Brownian time: t per cycle is A δt/3 (spec 70 §1.1); A = 1 is a lower bound
+            steps = [v for v in p["time_step"].values() if isinstance(v, (int, float)) and v > 0]
+            total = int(3 * p["time"] / max(steps)) if steps else 0
         segments = p.get("schedule", {}).get("segments", [])
         per_repeat = sum(s.get("cycles", 0) for s in segments if isinstance(s, dict))
         total = max(total, per_repeat * p.get("schedule", {}).get("repeat", 1))

@@ -1,0 +1,1 @@
+anisodyn_add_script_test(study_manifests study_manifests.py)

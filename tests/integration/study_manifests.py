@@ -1,0 +1,73 @@
+#!/usr/bin/env python3
+"""Runs manifests/quickstart.json and every manifests/*-smoke.json with anisodyn-run (2 workers)
+and checks each: exit 0, a report (summary.md, at least one PNG when the manifest asks for plots),
+and every scalar of every analysis output finite and physically sane: diffusion coefficients,
+response times and friction ratios > 0; uniaxial order parameters U in [0, 1]; fractions (X_c,
+p_b) in [0, 1]. Prints each manifest's wall time. A manifest name given as a fourth argument runs
+only that one."""
+import glob
+import json
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+
+import h5py
+
+bin_dir, tmp, source = sys.argv[1], sys.argv[2], sys.argv[3]
+only = sys.argv[4] if len(sys.argv) > 4 else None
+shutil.rmtree(tmp, ignore_errors=True)
+os.makedirs(tmp)
+runner = [sys.executable, os.path.join(source, "workflows", "anisodyn-run"), "--bin", bin_dir, "--jobs", "2", "--quiet",
+          "--results", tmp]
+manifests = [os.path.join(source, "manifests", "quickstart.json")] + sorted(glob.glob(os.path.join(source, "manifests", "*-smoke.json")))
+if only:
+    manifests = [m for m in manifests if os.path.basename(m) == only or os.path.basename(m) == only + ".json"]
+    assert manifests, f"no manifest {only}"
+
+RULES = [  # (scalar name pattern, lower, upper, what)
+    (r"^D_", 0.0, math.inf, "a diffusion coefficient > 0"),
+    (r"^(t_on|t_off)", 0.0, math.inf, "a response time > 0"),
+    (r"^gamma_eff_over_gamma0", 0.0, math.inf, "a friction ratio > 0"),
+    (r"^U_(L|W|T)?_?", 0.0, 1.0, "a uniaxial order parameter in [0, 1]"),
+    (r"^(X_c|p_b)", 0.0, 1.0, "a fraction in [0, 1]"),
+]
+failures = 0
+for path in manifests:
+    m = json.load(open(path))
+    study = m["study"]
+    t0 = time.time()
+    r = subprocess.run(runner + [path], capture_output=True, text=True)
+    wall = time.time() - t0
+    problems = []
+    if r.returncode != 0:
+        problems.append(f"exit {r.returncode}: {r.stderr[-1500:]}")
+    campaign = os.path.join(tmp, study)
+    if not problems and m.get("report"):
+        report = os.path.join(campaign, "report")
+        if not os.path.exists(os.path.join(report, "summary.md")):
+            problems.append("no report/summary.md")
+        if m["report"].get("plots") and not glob.glob(os.path.join(report, "*.png")):
+            problems.append("no plot in the report")
+    checked = 0
+    for h5 in glob.glob(os.path.join(campaign, "**", "*.h5"), recursive=True):
+        with h5py.File(h5, "r") as f:
+            if "scalars" not in f:
+                continue
+            for name, ds in f["scalars"].items():
+                value = float(ds[0])
+                checked += 1
+                if not math.isfinite(value):
+                    problems.append(f"{os.path.relpath(h5, campaign)}: {name} = {value} is not finite")
+                    continue
+                for pattern, lo, hi, what in RULES:
+                    if re.match(pattern, name) and not (lo <= value <= hi):
+                        problems.append(f"{os.path.relpath(h5, campaign)}: {name} = {value:.4g} is not {what}")
+    status = "ok  " if not problems else "FAIL"
+    print(f"{status} {os.path.basename(path)}: {wall:.1f} s on 2 workers, {checked} scalars checked" + ("" if not problems else "\n    " + "\n    ".join(problems[:10])))
+    failures += bool(problems)
+print(f"{failures} failed")
+sys.exit(1 if failures else 0)
