@@ -42,8 +42,9 @@ def cycles(job):
         segments = p.get("schedule", {}).get("segments", [])
         per_repeat = sum(s.get("cycles", 0) for s in segments if isinstance(s, dict))
         total = max(total, per_repeat * p.get("schedule", {}).get("repeat", 1))
-        if p.get("balance", {}).get("mode", "equilibrium") == "equilibrium":
-            total += p.get("preliminary_cycles", 10**4)
+        balance = p.get("balance")
+        if isinstance(balance, dict) and balance.get("mode", "equilibrium") == "equilibrium":
+            total += balance.get("preliminary_cycles", 10**4)
         return total
     return 0
 

@@ -102,8 +102,6 @@ def validate_grid(m):
                 raise ManifestError(f"grid.{var}[{i}]", "a number, string or boolean", v)
             if "/" in format_value(v) or format_value(v) in ("", ".", ".."):
                 raise ManifestError(f"grid.{var}[{i}]", "a value usable in a directory name (no '/')", v)
-        if len({format_value(v) for v in values}) != len(values):
-            raise ManifestError(f"grid.{var}", "distinct values", values)
     zipped = m.get("zip", [])
     if not isinstance(zipped, list):
         raise ManifestError("zip", "a list of groups of grid variables", zipped)
@@ -120,6 +118,13 @@ def validate_grid(m):
             if len(grid[var]) != len(grid[group[0]]):
                 raise ManifestError(f"zip[{g}][{j}]", f"a list as long as grid.{group[0]} ({len(grid[group[0]])} values)",
                                     len(grid[var]))
+        tuples = [tuple(format_value(grid[v][i]) for v in group) for i in range(len(grid[group[0]]))]
+        if len(set(tuples)) != len(tuples):
+            raise ManifestError(f"zip[{g}]", "distinct combinations of the zipped values (a repeated one would run twice)")
+    # a variable outside every zip group varies on its own: its values must differ
+    for var, values in grid.items():
+        if var not in seen and len({format_value(v) for v in values}) != len(values):
+            raise ManifestError(f"grid.{var}", "distinct values (or put it in a zip group)", values)
 
 
 def validate_stages(m, tool_exists):

@@ -99,6 +99,7 @@ class Report:
     def __init__(self, m, jobs, by_stage, campaign, out):
         self.m, self.jobs, self.by_stage, self.campaign, self.out = m, jobs, by_stage, campaign, out
         self.spec = m.get("report", {})
+        self.varying = []  # grid variables that differ among the jobs of the current plot
 
     def stage_jobs(self, stage, where="report"):
         if stage not in self.by_stage:
@@ -219,6 +220,7 @@ class Report:
         if not isinstance(ys, list) or not ys:
             raise ReportError(f"{where}.y: expected a list of column names")
         jobs = self.selected_jobs(spec, where)
+        varying = self.varying = [v for v in self.m.get("grid", {}) if len({format_value(j.point.get(v)) for j in jobs}) > 1]
         rows = []
         for job in jobs:
             data, _ = read_table(self.path(job), spec["table"])
@@ -228,7 +230,8 @@ class Report:
             for y in ys:
                 if y not in data:
                     raise ReportError(f"{where}.y: table '{spec['table']}' has no column '{y}' (columns: {', '.join(data)})")
-                label = y if len(jobs) == 1 else f"{y} [{point_text(job.point)}]"
+                where_text = point_text({v: job.point[v] for v in varying if v in job.point})
+                label = y if len(jobs) == 1 or not varying else f"{y} [{where_text}]"
                 err = data.get(y + "_se") if spec.get("errors", True) else None
                 ok = np.isfinite(data[x]) & np.isfinite(data[y])
                 if err is not None:
@@ -262,15 +265,23 @@ class Report:
             if spec["scalar"] not in scalars:
                 raise ReportError(f"{where}.scalar: stage '{spec['stage']}' has no scalar '{spec['scalar']}' ({', '.join(scalars)})")
             v, e = scalars[spec["scalar"]][:2]
-            groups.setdefault(format_value(job.point.get(series)) if series else "", []).append((float(job.point.get(x, 0)), v, e))
+            groups.setdefault(format_value(job.point.get(series)) if series else "", []).append((self.axis_value(x, job.point.get(x)), v, e))
         for label, pts in groups.items():
             pts.sort()
             a = np.array(pts)
             ax.errorbar(a[:, 0], a[:, 1], yerr=np.nan_to_num(a[:, 2]), marker="o", ms=4, capsize=2,
                         label=f"{series} = {label}" if series else spec["scalar"])
+        if not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in grid[x]):
+            ax.set_xticks(range(len(grid[x])), [format_value(v) for v in grid[x]])
         xs = np.array(sorted({p[0] for pts in groups.values() for p in pts}))
         for t in spec.get("theory", []):
             self.theory(ax, t, None, xs, where)
+
+    def axis_value(self, var, value):
+        """A grid value as a plot coordinate: the number, or the position in the grid's list."""
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
+            return float(value)
+        return float([format_value(v) for v in self.m["grid"][var]].index(format_value(value)))
 
     # --- theory overlays (spec 70) ---------------------------------------------------------
     def theory(self, ax, t, job, xs, where):
@@ -289,7 +300,8 @@ class Report:
             ax.plot(grid, t.get("amplitude", 1.0) * np.exp(-grid / t["tau"]), label=t.get("label", f"exp(-t/{t['tau']:.3g})"), **style)
         elif kind == "free_diffusion":
             slope = 2.0 * self.free_diffusivity(job, t, where)
-            suffix = "" if job is None or not job.point else f" [{point_text(job.point)}]"
+            shown = {v: job.point[v] for v in self.varying if job is not None and v in job.point}
+            suffix = f" [{point_text(shown)}]" if shown else ""
             ax.plot(grid, slope * grid, label=t.get("label", f"free diffusion, {t.get('component', 'tot')}") + suffix, **style)
         elif kind == "wertheim":
             scalars = read_scalars(self.path(job))

@@ -1,1 +1,0 @@
-anisodyn_add_script_test(dmc_smoke_manifests dmc_smoke_manifests.py)
