@@ -5,7 +5,7 @@ config → mc → dmc → msd, a hydro job, a report):
   2. a full run, then a second run that runs nothing (every job up to date);
   3. a parameter change re-runs exactly the jobs downstream of it; --only / --from;
   4. a failing job is reported with its log, blocks only what needs it, and the run exits 3;
-  5. SIGKILL of the runner in the middle of the campaign: the engines are stopped (they get
+  5. a second runner on a campaign that is being run refuses; SIGKILL of the runner in the middle: the engines are stopped (they get
      SIGTERM and checkpoint), a second run finishes without re-running any completed job, and
      every output equals that of an uninterrupted campaign (values, apart from provenance);
   6. the emitted Snakefile, run with `snakemake --cores 2`, gives the same outputs (skipped
@@ -143,6 +143,8 @@ while time.time() < deadline:
     if len(done_dmc) >= 1 and partial:
         break
     time.sleep(0.05)
+second = subprocess.run(runner + ["--results", killed, "--jobs", "1", path], capture_output=True, text=True)
+check(second.returncode == 3 and "another anisodyn-run" in second.stderr, "a second runner on a busy campaign refuses (exit 3)")
 time.sleep(0.3)
 proc.send_signal(signal.SIGKILL)
 proc.wait()

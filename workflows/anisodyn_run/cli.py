@@ -2,6 +2,7 @@
 import argparse
 import json
 import os
+import socket
 import sys
 import time
 
@@ -87,14 +88,20 @@ def selection(m, jobs, by_stage, args):
 def run(args, m, jobs, by_stage, campaign, bin_dir, root):
     os.makedirs(campaign, exist_ok=True)
     db = JobDb(campaign)
+    if runner_alive(db.data.get("runner")) and db.data["runner"]["pid"] != os.getpid():
+        print(f"anisodyn-run: error: another anisodyn-run (pid {db.data['runner']['pid']}) is working on {campaign}; "
+              "wait for it, or see --status", file=sys.stderr)
+        return EXIT_FAILED
     db.data["study"] = m["study"]
     db.data["manifest"] = os.path.abspath(args.manifest)
+    db.data["runner"] = {"pid": os.getpid(), "host": socket.gethostname(), "started": time.time()}
     selected, forced = selection(m, jobs, by_stage, args)
     t0 = time.time()
     if not args.quiet:
         print(f"[{m['study']}] {len(jobs)} jobs in {len(by_stage)} stages; {len(selected)} selected, {args.jobs} workers; "
               f"campaign {campaign}", file=sys.stderr)
     state, interrupted = executor.run(jobs, selected, forced, db, bin_dir, campaign, root, args.jobs, m["study"], args.quiet)
+    db.data.pop("runner", None)
     counts = {}
     for jid in selected:
         counts[state[jid]] = counts.get(state[jid], 0) + 1
@@ -152,12 +159,30 @@ def _order(m):
     return topological_order(m["stages"], index)
 
 
+def runner_alive(runner):
+    """Whether the runner recorded in the database is still running (on this host)."""
+    if not runner or runner.get("host") != socket.gethostname():
+        return False
+    try:
+        os.kill(runner["pid"], 0)
+    except (ProcessLookupError, PermissionError):
+        return False
+    try:
+        with open(f"/proc/{runner['pid']}/cmdline", "rb") as f:  # not a recycled pid
+            return b"anisodyn-run" in f.read()
+    except OSError:
+        return False
+
+
 def status(m, jobs, by_stage, campaign):
     db = JobDb(campaign)
     if not os.path.exists(db.path):
         print(f"study {m['study']}: no campaign yet ({campaign} has no job database)")
         return 0
     print(f"study {m['study']}: {len(jobs)} jobs; campaign {campaign}")
+    active = runner_alive(db.data.get("runner"))
+    if active:
+        print(f"  a runner is working on it now (pid {db.data['runner']['pid']})")
     failed = []
     total_cpu = 0.0
     for st in m["stages"]:
@@ -165,8 +190,8 @@ def status(m, jobs, by_stage, campaign):
         for jid in by_stage.get(st["name"], []):
             rec = db.data["jobs"].get(jid, {})
             s = rec.get("state", "pending")
-            if s == "running":
-                s = "interrupted"  # the runner is not running it now, or its database would say so only while it runs
+            if s == "running" and not active:
+                s = "interrupted"  # its runner was stopped: the next run resumes it
             counts[s] = counts.get(s, 0) + 1
             total_cpu += rec.get("seconds", 0.0) if rec.get("state") == "done" else 0.0
             if s == "failed":
