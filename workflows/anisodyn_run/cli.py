@@ -11,6 +11,7 @@ from .jobdb import JobDb
 from .manifest import ManifestError, format_value, load, replicated, validate
 
 EXIT_BAD_INPUT, EXIT_FAILED, EXIT_INTERRUPTED = 2, 3, 130
+DAG_LISTING_LIMIT = 60  # --dry-run lists every job (with its inputs) of campaigns up to this size
 
 
 def parse_args(argv):
@@ -148,8 +149,11 @@ def dry_run(m, jobs, by_stage, campaign):
     print(f"total: {len(jobs)} jobs ({present} outputs already present); estimated {cost.human_count(total_moves)} trial moves, "
           f"{cost.human_seconds(total_seconds)} of one core (single-core throughputs from docs/performance.md: "
           + ", ".join(f"{k} {v:.3g}/s" for k, v in cost.THROUGHPUT.items()) + ")")
-    first = next(iter(jobs.values()))
-    print(f"example job {first.label}: id {first.id}, output {first.output}")
+    listed = list(jobs.values()) if len(jobs) <= DAG_LISTING_LIMIT else list(jobs.values())[:1]
+    print("jobs (inputs first):" if len(listed) > 1 else f"{len(jobs)} jobs; the first (all are listed up to {DAG_LISTING_LIMIT}):")
+    for job in listed:
+        ins = ", ".join(jobs[i].label for i in job.inputs)
+        print(f"  {job.id}  {job.label:<40} <- {ins or '-'}")
     return 0
 
 
