@@ -7,7 +7,8 @@ config → mc → dmc → msd, a hydro job, a report):
   4. a failing job is reported with its log, blocks only what needs it, and the run exits 3;
   5. a second runner on a campaign that is being run refuses; SIGKILL of the runner in the middle: the engines are stopped (they get
      SIGTERM and checkpoint), a second run finishes without re-running any completed job, and
-     every output equals that of an uninterrupted campaign (values, apart from provenance);
+     every output equals that of an uninterrupted campaign (values, apart from provenance); the same
+     after SIGINT (exit 130);
   6. the emitted Snakefile, run with `snakemake --cores 2`, gives the same outputs (skipped
      with a note when snakemake is not installed)."""
 import copy
@@ -166,6 +167,22 @@ check(lr["up_to_date"] == len(stamps_before) and lr["ran"] == 11 - len(stamps_be
       f"resume: {len(stamps_before)} jobs completed before the kill were kept, {lr['ran']} ran ({lr})")
 check(all(os.path.getmtime(p) == t for p, t in stamps_before.items()), "no completed job was re-run (stamps untouched)")
 same_outputs(os.path.join(ref, "spheres"), campaign, "killed and resumed vs uninterrupted")
+
+# 5b. Ctrl-C (SIGINT): exit 130 after the running engines checkpoint; the next run resumes
+interrupted = os.path.join(tmp, "interrupted")
+proc = subprocess.Popen(runner + ["--results", interrupted, "--jobs", "1", path], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+campaign = os.path.join(interrupted, "spheres")
+deadline = time.time() + 300
+while time.time() < deadline and not glob.glob(os.path.join(campaign, "dmc", "*", "*.partial")):
+    time.sleep(0.05)
+time.sleep(0.3)
+proc.send_signal(signal.SIGINT)
+_, err = proc.communicate(timeout=120)
+check(proc.returncode == 130 and "run the same command again to resume" in err, f"SIGINT: exit 130 with a resume hint (got {proc.returncode})")
+check(last_run(interrupted)["interrupted"] >= 1, f"the interrupted job is recorded {last_run(interrupted)}")
+r = run(path, interrupted)
+check(r.returncode == 0, "the run after SIGINT finishes")
+same_outputs(os.path.join(ref, "spheres"), campaign, "interrupted by SIGINT and resumed vs uninterrupted")
 
 # 6. Snakemake export
 if shutil.which("snakemake"):

@@ -105,7 +105,8 @@ def run(args, m, jobs, by_stage, campaign, bin_dir, root):
     db.data.pop("runner", None)
     counts = {}
     for jid in selected:
-        counts[state[jid]] = counts.get(state[jid], 0) + 1
+        s = state.get(jid, "pending")  # an interrupted run leaves jobs it never reached
+        counts[s] = counts.get(s, 0) + 1
     ran, skipped = counts.get("done", 0), counts.get("skipped", 0)
     db.data.setdefault("runs", []).append({"started": t0, "seconds": round(time.time() - t0, 3), "ran": ran, "up_to_date": skipped,
                                             "failed": counts.get("failed", 0), "blocked": counts.get("blocked", 0),

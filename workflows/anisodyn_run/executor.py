@@ -107,38 +107,41 @@ def _clock(s):
     return f"{s // 3600}:{s // 60 % 60:02d}:{s % 60:02d}" if s >= 3600 else f"{s // 60}:{s % 60:02d}"
 
 
-def run(jobs, selected, forced, db, bin_dir, campaign, repo_root, workers, study, quiet=False):
-    """Runs the selected job ids (inputs first). `forced` ids run even when up to date.
-    Returns (finished states by id, interrupted flag)."""
-    state = {}
-    for jid in jobs:
-        if jid not in selected:
-            state[jid] = "external"  # not part of this invocation: must already exist if needed
-    waiting = [jid for jid in jobs if jid in selected]
-    running = {}  # jid -> (Popen, start time, log files)
-    progress = Progress(study, len(waiting), workers, quiet)
-    interrupted = {"flag": False}
+class LocalRun:
+    """One invocation over a campaign: the selected jobs, their states, and the running children."""
 
-    def on_signal(signum, _frame):
-        interrupted["flag"] = True
-        for proc, _, _ in running.values():
+    def __init__(self, jobs, selected, forced, db, bin_dir, campaign, repo_root, workers, study, quiet):
+        self.jobs, self.selected, self.forced, self.db = jobs, selected, forced, db
+        self.bin_dir, self.campaign, self.repo_root = bin_dir, campaign, repo_root
+        self.workers, self.study, self.quiet = workers, study, quiet
+        # jobs outside the selection are "external": their outputs must already exist if needed
+        self.state = {jid: "external" for jid in jobs if jid not in selected}
+        self.waiting = [jid for jid in jobs if jid in selected]
+        self.running = {}  # jid -> (Popen, start time, log files)
+        self.progress = Progress(study, len(self.waiting), workers, quiet)
+        self.interrupted = False
+
+    def stop(self, _signum=None, _frame=None):
+        """SIGINT/SIGTERM: no new jobs; the running engines get SIGTERM and checkpoint."""
+        self.interrupted = True
+        for proc, _, _ in self.running.values():
             try:
                 proc.send_signal(signal.SIGTERM)
             except ProcessLookupError:
                 pass
 
-    old = {s: signal.signal(s, on_signal) for s in (signal.SIGINT, signal.SIGTERM)}
-    counts = lambda: {"done": sum(1 for j in state if state[j] in ("done", "skipped") and j in selected),
-                      "skipped": sum(1 for j in state if state[j] == "skipped"),
-                      "running": len(running), "failed": sum(1 for j in state if state[j] == "failed"),
-                      "left": len(waiting)}
+    def counts(self):
+        st = self.state
+        return {"done": sum(1 for j in st if st[j] in ("done", "skipped")), "skipped": sum(1 for j in st if st[j] == "skipped"),
+                "running": len(self.running), "failed": sum(1 for j in st if st[j] == "failed"), "left": len(self.waiting)}
 
-    def inputs_state(job):
+    def inputs_state(self, job):
+        """The set of {done, missing, failed, pending} over the job's inputs."""
         s = set()
         for i in job.inputs:
-            st = state.get(i)
+            st = self.state.get(i)
             if st == "external":
-                s.add("done" if os.path.exists(os.path.join(campaign, jobs[i].output)) else "missing")
+                s.add("done" if os.path.exists(os.path.join(self.campaign, self.jobs[i].output)) else "missing")
             elif st in ("done", "skipped"):
                 s.add("done")
             elif st in ("failed", "blocked", "interrupted"):
@@ -147,73 +150,100 @@ def run(jobs, selected, forced, db, bin_dir, campaign, repo_root, workers, study
                 s.add("pending")
         return s
 
-    try:
-        while waiting or running:
-            launched = False
-            for jid in list(waiting):
-                if interrupted["flag"] or len(running) >= workers:
-                    break
-                job = jobs[jid]
-                ins = inputs_state(job)
-                if "pending" in ins:
-                    continue
-                waiting.remove(jid)
-                if "failed" in ins or "missing" in ins:
-                    state[jid] = "blocked"
-                    why = "an input job failed" if "failed" in ins else "an input is missing (run the stages before it)"
-                    db.update(jid, label=job.label, stage=job.stage, state="blocked", reason=why)
-                    if not quiet:
-                        print(f"[{study}] blocked: {job.label}: {why}", file=sys.stderr)
-                    continue
-                if jid not in forced and up_to_date(job, jobs, db, campaign):
-                    state[jid] = "skipped"
-                    db.update(jid, label=job.label, stage=job.stage, state="up-to-date", output=job.output)
-                    continue
-                write_config(job, campaign)
-                cmd = command(job, jobs, bin_dir, campaign)
-                out = open(os.path.join(campaign, job.log), "w")
-                err = open(os.path.join(campaign, job.err), "w")
-                proc = subprocess.Popen(cmd, stdout=out, stderr=err, cwd=repo_root, preexec_fn=_die_with_parent(os.getpid()))
-                running[jid] = (proc, time.time(), (out, err))
-                state[jid] = "running"
-                db.update(jid, label=job.label, stage=job.stage, state="running", started=time.time(), command=cmd,
-                          log=job.log, err=job.err, output=job.output)
-                db.save()
-                launched = True
-            finished = False
-            for jid, (proc, t_start, files) in list(running.items()):
-                rc = proc.poll()
-                if rc is None:
-                    continue
-                for f in files:
-                    f.close()
-                del running[jid]
-                job, seconds = jobs[jid], time.time() - t_start
-                if rc == 0:
-                    atomic_write_text(os.path.join(campaign, job.directory, job.stem + ".stamp.json"),
-                                      json.dumps(stamp_of(job, jobs, db, campaign), sort_keys=True))
-                    state[jid] = "done"
-                    progress.durations.setdefault(job.stage, []).append(seconds)
-                elif rc in (130, -signal.SIGTERM, -signal.SIGINT) and interrupted["flag"]:
-                    state[jid] = "interrupted"
-                else:
-                    state[jid] = "failed"
-                    print(f"[{study}] FAILED: {job.label} (exit {rc}); log: {os.path.join(campaign, job.err)}", file=sys.stderr)
-                db.update(jid, state=state[jid], exit_code=rc, seconds=round(seconds, 3), finished=time.time())
-                db.save()
-                finished = True
-            if interrupted["flag"]:
-                if not running:
-                    break
-                time.sleep(0.05)
+    def start_ready_jobs(self):
+        """Settles or launches every waiting job whose inputs are finished, up to the free workers."""
+        launched = False
+        for jid in list(self.waiting):
+            if self.interrupted or len(self.running) >= self.workers:
+                break
+            job, ins = self.jobs[jid], self.inputs_state(self.jobs[jid])
+            if "pending" in ins:
                 continue
-            remaining = [jobs[j].stage for j in waiting] + [jobs[j].stage for j in running]
-            progress.show(counts(), remaining, [time.time() - t for _, t, _ in running.values()], force=finished)
-            if not launched and not finished:
+            self.waiting.remove(jid)
+            if "failed" in ins or "missing" in ins:
+                self.block(job, "an input job failed" if "failed" in ins else "an input is missing (run the stages before it)")
+            elif jid not in self.forced and up_to_date(job, self.jobs, self.db, self.campaign):
+                self.state[jid] = "skipped"
+                self.db.update(jid, label=job.label, stage=job.stage, state="up-to-date", output=job.output)
+            else:
+                self.launch(job)
+                launched = True
+        return launched
+
+    def block(self, job, why):
+        self.state[job.id] = "blocked"
+        self.db.update(job.id, label=job.label, stage=job.stage, state="blocked", reason=why)
+        if not self.quiet:
+            print(f"[{self.study}] blocked: {job.label}: {why}", file=sys.stderr)
+
+    def launch(self, job):
+        write_config(job, self.campaign)
+        cmd = command(job, self.jobs, self.bin_dir, self.campaign)
+        out = open(os.path.join(self.campaign, job.log), "w")
+        err = open(os.path.join(self.campaign, job.err), "w")
+        proc = subprocess.Popen(cmd, stdout=out, stderr=err, cwd=self.repo_root, preexec_fn=_die_with_parent(os.getpid()))
+        self.running[job.id] = (proc, time.time(), (out, err))
+        self.state[job.id] = "running"
+        self.db.update(job.id, label=job.label, stage=job.stage, state="running", started=time.time(), command=cmd,
+                       log=job.log, err=job.err, output=job.output)
+        self.db.save()
+
+    def reap_finished(self):
+        finished = False
+        for jid, (proc, t_start, files) in list(self.running.items()):
+            rc = proc.poll()
+            if rc is None:
+                continue
+            for f in files:
+                f.close()
+            del self.running[jid]
+            self.settle(self.jobs[jid], rc, time.time() - t_start)
+            finished = True
+        return finished
+
+    def settle(self, job, rc, seconds):
+        """Records a finished child: done (with its stamp), interrupted, or failed."""
+        if rc == 0:
+            atomic_write_text(os.path.join(self.campaign, job.directory, job.stem + ".stamp.json"),
+                              json.dumps(stamp_of(job, self.jobs, self.db, self.campaign), sort_keys=True))
+            self.state[job.id] = "done"
+            self.progress.durations.setdefault(job.stage, []).append(seconds)
+        elif rc in (130, -signal.SIGTERM, -signal.SIGINT) and self.interrupted:
+            self.state[job.id] = "interrupted"
+        else:
+            self.state[job.id] = "failed"
+            print(f"[{self.study}] FAILED: {job.label} (exit {rc}); log: {os.path.join(self.campaign, job.err)}", file=sys.stderr)
+        self.db.update(job.id, state=self.state[job.id], exit_code=rc, seconds=round(seconds, 3), finished=time.time())
+        self.db.save()
+
+    def show_progress(self, force):
+        remaining = [self.jobs[j].stage for j in self.waiting] + [self.jobs[j].stage for j in self.running]
+        self.progress.show(self.counts(), remaining, [time.time() - t for _, t, _ in self.running.values()], force=force)
+
+    def run(self):
+        old = {s: signal.signal(s, self.stop) for s in (signal.SIGINT, signal.SIGTERM)}
+        try:
+            while self.waiting or self.running:
+                launched = self.start_ready_jobs()
+                finished = self.reap_finished()
+                if self.interrupted:
+                    if not self.running:
+                        break
+                elif launched or finished:
+                    self.show_progress(force=finished)
+                    continue
+                else:
+                    self.show_progress(force=False)
                 time.sleep(0.05)
-    finally:
-        for s, h in old.items():
-            signal.signal(s, h)
-        db.save()
-    progress.show(counts(), [], [], force=True)
-    return state, interrupted["flag"]
+        finally:
+            for s, h in old.items():
+                signal.signal(s, h)
+            self.db.save()
+        self.progress.show(self.counts(), [], [], force=True)
+        return self.state, self.interrupted
+
+
+def run(jobs, selected, forced, db, bin_dir, campaign, repo_root, workers, study, quiet=False):
+    """Runs the selected job ids (inputs first); `forced` ids run even when up to date.
+    Returns (the state of every job, whether the run was interrupted)."""
+    return LocalRun(jobs, selected, forced, db, bin_dir, campaign, repo_root, workers, study, quiet).run()
