@@ -1,6 +1,5 @@
 """Command line of anisodyn-run (docs/manifests.md)."""
 import argparse
-import json
 import os
 import socket
 import sys
@@ -8,7 +7,7 @@ import time
 
 from . import cost, executor, expand
 from .jobdb import JobDb
-from .manifest import ManifestError, format_value, load, replicated, validate
+from .manifest import ManifestError, load, replicated, validate
 
 EXIT_BAD_INPUT, EXIT_FAILED, EXIT_INTERRUPTED = 2, 3, 130
 DAG_LISTING_LIMIT = 60  # --dry-run lists every job (with its inputs) of campaigns up to this size
@@ -57,15 +56,15 @@ def main(argv=None):
         where = args.manifest if not str(e).startswith("at --") else "command line"
         print(f"anisodyn-run: error: {where}: {e}", file=sys.stderr)
         return EXIT_BAD_INPUT
-    jobs, by_stage = expand.expand(m, order)
+    jobs, by_stage, deps = expand.expand(m, order)
     campaign = os.path.abspath(args.campaign) if args.campaign else os.path.join(results, m["study"])
     if args.dry_run:
-        return dry_run(m, jobs, by_stage, campaign)
+        return dry_run(m, jobs, by_stage, deps, campaign)
     if args.status:
         return status(m, jobs, by_stage, campaign)
     if args.emit:
         from . import snakemake
-        return snakemake.emit(m, jobs, by_stage, bin_dir, root, os.path.abspath(args.emit[1]), args.manifest)
+        return snakemake.emit(m, jobs, by_stage, deps, bin_dir, root, os.path.abspath(args.emit[1]), args.manifest)
     return run(args, m, jobs, by_stage, campaign, bin_dir, root)
 
 
@@ -128,8 +127,7 @@ def run(args, m, jobs, by_stage, campaign, bin_dir, root):
     return report.generate(m, jobs, by_stage, campaign, quiet=args.quiet)
 
 
-def dry_run(m, jobs, by_stage, campaign):
-    deps = expand.stage_vars(m, _order(m))
+def dry_run(m, jobs, by_stage, deps, campaign):
     points = len(expand.grid_points(m))
     print(f"study {m['study']}: {points} grid point{'s' if points != 1 else ''} x {m.get('replicas', 1)} replicas -> {len(jobs)} jobs")
     print(f"campaign directory: {campaign}")
@@ -156,12 +154,6 @@ def dry_run(m, jobs, by_stage, campaign):
         ins = ", ".join(jobs[i].label for i in job.inputs)
         print(f"  {job.id}  {job.label:<40} <- {ins or '-'}")
     return 0
-
-
-def _order(m):
-    from .manifest import topological_order
-    index = {st["name"]: i for i, st in enumerate(m["stages"])}
-    return topological_order(m["stages"], index)
 
 
 def runner_alive(runner):

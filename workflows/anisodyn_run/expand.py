@@ -110,8 +110,10 @@ def output_name(stage, replica):
 
 
 def expand(m, order):
-    """All jobs, keyed by id, in an order where inputs come first; and the jobs of each stage."""
+    """All jobs, keyed by id, in an order where inputs come first; the job ids of each stage; and the
+    grid variables each stage depends on."""
     stages = m["stages"]
+    stage_by_name = {st["name"]: st for st in stages}
     replicas = m.get("replicas", 1)
     deps = stage_vars(m, order)
     jobs, by_stage = {}, {}
@@ -127,7 +129,7 @@ def expand(m, order):
                     continue
                 input_ids = []
                 for inp in st.get("inputs", []):
-                    inp_stage = stages[next(k for k, s in enumerate(stages) if s["name"] == inp)]
+                    inp_stage = stage_by_name[inp]
                     inp_point = json.dumps({v: point[v] for v in deps[inp]}, sort_keys=True)
                     if replicated(inp_stage):
                         wanted = [r] if r is not None else list(range(replicas))
@@ -148,4 +150,4 @@ def expand(m, order):
     for job in jobs.values():
         for inp in job.inputs:
             jobs[inp].downstream.append(job.id)
-    return jobs, by_stage
+    return jobs, by_stage, deps

@@ -5,7 +5,6 @@ interrupted), timings, exit code and log paths, plus a cache of input file hashe
 import hashlib
 import json
 import os
-import time
 
 DIR = ".anisodyn"
 
@@ -55,6 +54,3 @@ class JobDb:
         self.data["hashes"][key] = [st.st_size, st.st_mtime_ns, h.hexdigest()]
         return h.hexdigest()
 
-
-def now():
-    return time.time()

@@ -13,7 +13,6 @@ References in params: "${grid.x}" (a grid var), "${replica}" (the replica index,
 only), "${study}". A string that is exactly one reference takes the value's type.
 """
 import json
-import os
 import re
 
 REFERENCE = re.compile(r"\$\{([^}]*)\}")
@@ -168,7 +167,7 @@ def validate_stages(m, tool_exists):
     grid = m.get("grid", {})
     for i, st in enumerate(stages):
         params = merge(m.get("defaults", {}).get(st["tool"], {}), st.get("params", {}))
-        check_references(params, f"stages[{i}].params", grid, replicated(st, m))
+        check_references(params, f"stages[{i}].params", grid, replicated(st))
     return order
 
 
@@ -193,7 +192,7 @@ def topological_order(stages, index):
     return order
 
 
-def replicated(stage, m=None):
+def replicated(stage):
     """Whether the stage runs once per replica: engines by default, analysis stages aggregate."""
     return stage.get("replicate", stage["tool"] in ENGINE_TOOLS)
 

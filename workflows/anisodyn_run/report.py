@@ -5,7 +5,6 @@ draws the configured plots with the theory overlays of spec 70, and lists every 
 Written into report.partial/ and renamed, so a report is either complete or absent."""
 import csv
 import fnmatch
-import json
 import math
 import os
 import shutil
@@ -199,7 +198,7 @@ class Report:
         if "y" in log:
             ax.set_yscale("log")
         ax.set_xlabel(spec.get("xlabel", spec.get("x", "")))
-        ax.set_ylabel(spec.get("ylabel", ", ".join(spec.get("y", [spec.get("scalar", "")])) if "y" in spec else spec.get("scalar", "")))
+        ax.set_ylabel(spec.get("ylabel", ", ".join(spec["y"]) if "table" in spec else spec["scalar"]))
         ax.set_title(spec.get("title", name))
         if ax.get_legend_handles_labels()[0]:
             ax.legend(fontsize=7)
@@ -221,7 +220,7 @@ class Report:
             raise ReportError(f"{where}.y: expected a list of column names")
         jobs = self.selected_jobs(spec, where)
         varying = self.varying = [v for v in self.m.get("grid", {}) if len({format_value(j.point.get(v)) for j in jobs}) > 1]
-        rows = []
+        curves = {}  # job id -> (job, x values drawn)
         for job in jobs:
             data, _ = read_table(self.path(job), spec["table"])
             x = spec.get("x", "time")
@@ -238,19 +237,11 @@ class Report:
                     ax.errorbar(data[x][ok], data[y][ok], yerr=np.nan_to_num(err[ok]), label=label, marker=".", ms=3, lw=1, capsize=1.5)
                 else:
                     ax.plot(data[x][ok], data[y][ok], label=label, marker=".", ms=3, lw=1)
-                rows.append((job, data[x][ok]))
+                curves[job.id] = (job, data[x][ok])
+        # a free-particle line per grid point (its species' D); any other overlay once
         for t in spec.get("theory", []):
-            for job, xs in rows[:1] if t.get("kind") != "free_diffusion" else self._unique_points(rows):
+            for job, xs in list(curves.values())[:None if t.get("kind") == "free_diffusion" else 1]:
                 self.theory(ax, t, job, xs, where)
-
-    @staticmethod
-    def _unique_points(rows):
-        seen, out = set(), []
-        for job, xs in rows:
-            if job.id not in seen:
-                seen.add(job.id)
-                out.append((job, xs))
-        return out
 
     def scalar_plot(self, ax, spec, where):
         import numpy as np

@@ -12,7 +12,6 @@ import shlex
 import sys
 
 from . import executor
-from .manifest import replicated
 
 SLURM_PROFILE = """# Snakemake SLURM profile for {study} (snakemake >= 7.19: native SLURM executor).
 # Fill in the account and partition of your cluster; resources are per job (one stage run, one core).
@@ -39,11 +38,7 @@ def rule_patterns(job, stage_vars, index):
     return "/".join(parts + [stem]), "/".join(parts + [filename])
 
 
-def emit(m, jobs, by_stage, bin_dir, repo_root, out_dir, manifest_path):
-    from .expand import stage_vars
-    from .manifest import topological_order
-    order = topological_order(m["stages"], {st["name"]: i for i, st in enumerate(m["stages"])})
-    deps = stage_vars(m, order)
+def emit(m, jobs, by_stage, deps, bin_dir, repo_root, out_dir, manifest_path):
     grid_index = {v: k for k, v in enumerate(m.get("grid", {}))}
     os.makedirs(out_dir, exist_ok=True)
     table = {}
