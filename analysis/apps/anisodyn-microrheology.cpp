@@ -5,6 +5,7 @@
 //   mode "active":  effective friction γ_eff/γ_0 of a pulled tracer (F3), the axisymmetric bath density
 //                   map around it with the local order, the on-axis profile and the wake length (F4).
 #include <algorithm>
+#include <type_traits>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -92,24 +93,18 @@ void run_passive(StageRun& run) {
 
 void write_friction(StageRun& run, const ActiveResult& r, const nlohmann::json& details) {
   Table& t = run.out.table("friction_replicas", "steady tracer velocity per replica (spec 50 F3), in input order");
-  std::vector<double> index, v, v_se, t0, t1, points, ratio;
-  for (std::size_t k = 0; k < r.replicas.size(); ++k) {
-    const auto& p = r.replicas[k];
-    index.push_back(static_cast<double>(k));
-    v.push_back(p.velocity);
-    v_se.push_back(p.velocity_error);
-    t0.push_back(p.t_start);
-    t1.push_back(p.t_end);
-    points.push_back(static_cast<double>(p.points));
-    ratio.push_back(r.D_s * r.beta_force / p.velocity);
-  }
-  t.add("replica", "1", "index of the input trajectory", index);
-  t.add("velocity", "length/tau", "spec 50 F3: least-squares slope of (r(t) - r(0)).e against mapped time over the steady part", v);
-  t.add("velocity_fit_se", "length/tau", "least-squares error of the slope (residuals of a random walk are correlated: indicative only)", v_se);
-  t.add("t_start", "tau", "start of the steady part: first time the tracer has moved steady_distance (Decision: 2 sigma) along e, or steady_from", t0);
-  t.add("t_end", "tau", "last time of the fitted path", t1);
-  t.add("points", "1", "points in the fit", points);
-  t.add("gamma_eff_over_gamma0", "1", "D_s beta F / velocity of this replica alone", ratio);
+  using Replica = std::decay_t<decltype(r.replicas.front())>;
+  t.add("replica", "1", "index of the input trajectory", index_column(r.replicas.size()));
+  t.add("velocity", "length/tau", "spec 50 F3: least-squares slope of (r(t) - r(0)).e against mapped time over the steady part",
+        column_of(r.replicas, &Replica::velocity));
+  t.add("velocity_fit_se", "length/tau", "least-squares error of the slope (residuals of a random walk are correlated: indicative only)",
+        column_of(r.replicas, &Replica::velocity_error));
+  t.add("t_start", "tau", "start of the steady part: first time the tracer has moved steady_distance (Decision: 2 sigma) along e, or steady_from",
+        column_of(r.replicas, &Replica::t_start));
+  t.add("t_end", "tau", "last time of the fitted path", column_of(r.replicas, &Replica::t_end));
+  t.add("points", "1", "points in the fit", column_of(r.replicas, &Replica::points));
+  t.add("gamma_eff_over_gamma0", "1", "D_s beta F / velocity of this replica alone",
+        column_of(r.replicas, [&](const Replica& p) { return r.D_s * r.beta_force / p.velocity; }));
 
   nlohmann::json d = details;
   d["method"] = "D_s beta F / <v>, <v> the mean of the per-replica steady velocities; error by jackknife over replicas (time blocks of the steady part for one replica)";

@@ -2,6 +2,7 @@
 // literal 105% and t_OFF,95%) with modified Z-score outlier rejection over trajectories (§8.2), and
 // the replica-mean signal against time since the switch-on.
 #include <cstdio>
+#include <type_traits>
 
 #include "anisodyn/analysis/response_times.hpp"
 #include "anisodyn/analysis/stage.hpp"
@@ -42,32 +43,22 @@ void add_scalar(StageRun& run, const std::string& name, const std::string& speci
 void write_results(StageRun& run, const ResponseSettings& s, const SelectedSpecies& sp, const ResponseResult& r) {
   const std::string sig = r.signal == "B2" ? std::string("B_2,") + axis_letter(r.main_axis) : r.signal;
   Table& t = run.out.table("response_" + sp.name, "response times of species " + sp.name + " per trajectory (spec 50 section 8), signal " + sig);
-  std::vector<double> index, on_at, off_at, b_on, b_eq, w_on, w_off;
-  std::vector<double> t_on, t_off, t_off95;
-  for (std::size_t k = 0; k < r.replicas.size(); ++k) {
-    const auto& x = r.replicas[k];
-    index.push_back(static_cast<double>(k));
-    on_at.push_back(x.switch_on);
-    off_at.push_back(x.switch_off);
-    b_on.push_back(x.b_on);
-    b_eq.push_back(x.b_eq_off);
-    w_on.push_back(static_cast<double>(x.window_on));
-    w_off.push_back(static_cast<double>(x.window_off));
-    t_on.push_back(x.t_on);
-    t_off.push_back(x.t_off);
-    t_off95.push_back(x.t_off95);
-  }
-  t.add("replica", "1", "index of the input trajectory (order of the inputs)", index);
-  t.add("switch_on", "tau", "switch-on instant (config switch_on or the field_switches observable)", on_at);
-  t.add("switch_off", "tau", "switch-off instant (NaN: none)", off_at);
-  t.add("signal_on", "1", "spec 50 H1: B_on, mean of " + sig + " over the last 25% of the on-segment", b_on);
-  t.add("signal_eq_off", "1", "spec 50 H1: B_eq,off, mean of " + sig + " over the field-off segment before the switch-on", b_eq);
-  t.add("window_on", "frames", "moving-average window of the on-segment (1% of its frames, odd)", w_on);
-  t.add("window_off", "frames", "moving-average window of the off-segment (1% of its frames, odd)", w_off);
-  add_time_columns(t, "t_on", "spec 50 H1: first time after switch-on with smoothed " + sig + " >= 0.95 B_on", t_on, r.on);
-  add_time_columns(t, "t_off", "spec 50 H1: first time after switch-off with smoothed " + sig + " <= 1.05 B_eq,off (literal 105%)", t_off, r.off);
+  using Replica = std::decay_t<decltype(r.replicas.front())>;
+  const auto& rows = r.replicas;
+  t.add("replica", "1", "index of the input trajectory (order of the inputs)", index_column(rows.size()));
+  t.add("switch_on", "tau", "switch-on instant (config switch_on or the field_switches observable)", column_of(rows, &Replica::switch_on));
+  t.add("switch_off", "tau", "switch-off instant (NaN: none)", column_of(rows, &Replica::switch_off));
+  t.add("signal_on", "1", "spec 50 H1: B_on, mean of " + sig + " over the last 25% of the on-segment", column_of(rows, &Replica::b_on));
+  t.add("signal_eq_off", "1", "spec 50 H1: B_eq,off, mean of " + sig + " over the field-off segment before the switch-on",
+        column_of(rows, &Replica::b_eq_off));
+  t.add("window_on", "frames", "moving-average window of the on-segment (1% of its frames, odd)", column_of(rows, &Replica::window_on));
+  t.add("window_off", "frames", "moving-average window of the off-segment (1% of its frames, odd)", column_of(rows, &Replica::window_off));
+  add_time_columns(t, "t_on", "spec 50 H1: first time after switch-on with smoothed " + sig + " >= 0.95 B_on",
+                   column_of(rows, &Replica::t_on), r.on);
+  add_time_columns(t, "t_off", "spec 50 H1: first time after switch-off with smoothed " + sig + " <= 1.05 B_eq,off (literal 105%)",
+                   column_of(rows, &Replica::t_off), r.off);
   add_time_columns(t, "t_off95", "spec 50 H1 Decision: first time after switch-off with smoothed " + sig +
-                                      " <= B_eq,off + 0.05 (B_on - B_eq,off)", t_off95, r.off95);
+                                      " <= B_eq,off + 0.05 (B_on - B_eq,off)", column_of(rows, &Replica::t_off95), r.off95);
   Table& c = run.out.table("response_curve_" + sp.name, "mean " + sig + " of species " + sp.name + " against time since the switch-on");
   c.add("time", "tau", "time since the switch-on: mean over replicas of t_frame - t_switch_on (spec 50 section 0)", r.curve_time);
   c.add("signal", "1", sig + " (spec 50 C1/C2/C4), replicas interpolated linearly onto the common grid", r.curve);

@@ -11,12 +11,31 @@
 //   /<table>               group, attr definition
 //   /<table>/<column>      float64 [rows], attrs units, definition
 //   /scalars/<name>        float64 [2] = (value, standard error), attrs units, definition, details (JSON)
+#include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 namespace anisodyn::analysis {
+
+/// A table column from each row of a per-replica (or per-item) result: `get` is a data member
+/// pointer or any callable on a row.
+template <class Rows, class Get>
+std::vector<double> column_of(const Rows& rows, Get get) {
+  std::vector<double> out;
+  out.reserve(rows.size());
+  for (const auto& row : rows) out.push_back(static_cast<double>(std::invoke(get, row)));
+  return out;
+}
+
+/// 0, 1, …, n − 1: the index column of a table with one row per input.
+inline std::vector<double> index_column(std::size_t n) {
+  std::vector<double> out(n);
+  for (std::size_t k = 0; k < n; ++k) out[k] = static_cast<double>(k);
+  return out;
+}
 
 struct Column {
   std::string name, units, definition;
