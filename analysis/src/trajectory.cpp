@@ -154,6 +154,7 @@ void check_replica_matches(const Trajectory& a, const Trajectory& b, double time
   if (a.species_table.size() != b.species_table.size()) mismatch("the species tables differ");
   for (std::size_t s = 0; s < a.species_table.size(); ++s)
     if (a.species_table[s].name != b.species_table[s].name) mismatch("the species tables differ");
+  if (time_tolerance == kIndependentTimes) return;
   if (a.frames != b.frames) mismatch(std::to_string(b.frames) + " frames, the first replica has " + std::to_string(a.frames));
   const double scale = std::max(std::abs(a.time.back() - a.time.front()), 1e-300);
   for (std::size_t f = 0; f < a.frames; ++f) {
@@ -195,7 +196,8 @@ std::vector<double> for_each_replica(const std::vector<std::string>& paths, cons
   for (std::size_t k = 0; k < paths.size(); ++k) {
     Trajectory t = load_trajectory(paths[k], needs);
     if (k == 0) mean_time.assign(t.frames, 0.0);
-    for (std::size_t f = 0; f < t.frames; ++f) mean_time[f] += t.time[f] / static_cast<double>(paths.size());
+    // (Replicas on independent time axes may differ in length: the mean then covers the common frames.)
+    for (std::size_t f = 0; f < std::min(t.frames, mean_time.size()); ++f) mean_time[f] += t.time[f] / static_cast<double>(paths.size());
     fn(t, k);
   }
   return mean_time;

@@ -18,6 +18,7 @@
 #include <random>
 
 #include "anisodyn/analysis/active_microrheology.hpp"
+#include "anisodyn/analysis/fitting.hpp"
 #include "anisodyn/analysis/passive_microrheology.hpp"
 #include "anisodyn/core/box.hpp"
 #include "anisodyn/core/error.hpp"
@@ -353,6 +354,73 @@ TEST_F(MicrorheologyTest, FreePulledTracerHasFrictionRatioOne) {
   }
 }
 
+TEST(SteadyVelocity, EndToEndDriftIsUnbiasedWithTheBrownianVarianceAndBeatsTheLeastSquaresSlope) {
+  // 400 independent drifting walks (D = 0.1, v = 0.5) sampled at 201 points over t in [0, 20]:
+  // the end-to-end drift has variance 2D/T, the least-squares slope of the same path 6/5 of that.
+  const double D = 0.1, v = 0.5, dt = 0.1;
+  const std::size_t walks = 400, points = 201;
+  std::vector<double> drift, fitted, reported_error;
+  for (unsigned w = 0; w < walks; ++w) {
+    const SyntheticTrajectory t = pulled_tracer(points, dt, D, v, 7000 + w);
+    std::vector<double> time = t.time, z;
+    for (const auto& frame : t.position) z.push_back(frame[0].z() - t.position[0][0].z());
+    const SteadyVelocity s = steady_velocity(time, z, 1.0, 0.0);  // from t = 0
+    ASSERT_EQ(s.first, 0u);
+    ASSERT_EQ(s.points, points);
+    EXPECT_DOUBLE_EQ(s.velocity, (z.back() - z.front()) / (time.back() - time.front()));
+    drift.push_back(s.velocity);
+    reported_error.push_back(s.velocity_error);
+    fitted.push_back(fit_line(time, z).slope);
+  }
+  const double T = dt * static_cast<double>(points - 1), expected_sd = std::sqrt(2 * D / T);
+  const Estimate m = mean_and_error(drift);
+  EXPECT_NEAR(m.value, v, 4 * m.error);
+  const double sd = m.error * std::sqrt(static_cast<double>(walks));
+  // The sample sd of n Gaussian values has relative SE 1/√(2(n − 1)) ≈ 3.5% here: 4 SE.
+  EXPECT_NEAR(sd, expected_sd, 4 * expected_sd / std::sqrt(2.0 * (walks - 1)));
+  const double fitted_sd = mean_and_error(fitted).error * std::sqrt(static_cast<double>(walks));
+  EXPECT_NEAR(fitted_sd, std::sqrt(1.2) * expected_sd, 4 * std::sqrt(1.2) * expected_sd / std::sqrt(2.0 * (walks - 1)));
+  EXPECT_LT(sd, fitted_sd);
+  // The per-path error, from the path's own increments, is σ/√T on average.
+  const Estimate per_path = mean_and_error(reported_error);
+  EXPECT_LT(per_path.error, 0.01 * expected_sd);  // 200 increments per path: σ² to ~5%, the mean of 400 to ~0.2%
+  EXPECT_NEAR(per_path.value, expected_sd, 4 * per_path.error + 0.001 * expected_sd);  // + the O(1/n) bias of a square root
+}
+
+TEST_F(MicrorheologyTest, ZeroForceIsAPassiveReferenceWithNoFrictionRatio) {
+  const double D = 1.0 / (3.0 * kPi);
+  std::vector<std::string> paths;
+  for (unsigned r = 0; r < 20; ++r) {
+    paths.push_back(file("pe0_" + std::to_string(r) + ".h5"));
+    pulled_tracer(201, 0.05, D, 0.0, 300 + r).write(paths.back());
+  }
+  nlohmann::json j = {{"species", "tracer"}, {"pe", 0.0}};
+  io::ConfigNode cfg(j, "cfg.json");
+  ActiveMicrorheologySettings s = parse_active_microrheology_settings(cfg);
+  cfg.finish();
+  nlohmann::json details;
+  resolve_active_defaults(s, pulled_tracer(2, 1.0, D, 0.0, 1).table, nlohmann::json::object(), "cfg.json", details);
+  ASSERT_EQ(s.beta_force, 0.0);
+  ASSERT_TRUE(s.steady_from.has_value());  // no transient: the whole run
+  EXPECT_EQ(*s.steady_from, 0.0);
+  ActiveMicrorheology a(s, paths.size(), "cfg.json");
+  for_each_replica(paths, positions_and_observables(), [&](const Trajectory& t, std::size_t) { a.accumulate(t); });
+  const ActiveResult r = a.compute();
+  EXPECT_NEAR(r.velocity.value, 0.0, 4 * r.velocity.error);
+  EXPECT_LT(r.velocity.error, 0.1);  // √(2D/T)/√20 = 0.024 expected
+  EXPECT_TRUE(std::isnan(r.gamma_ratio.value));
+  // steady_distance cannot mean anything without a drift
+  nlohmann::json bad = {{"species", "tracer"}, {"pe", 0.0}, {"steady_distance", 1.0}};
+  io::ConfigNode bad_cfg(bad, "cfg.json");
+  ActiveMicrorheologySettings b = parse_active_microrheology_settings(bad_cfg);
+  try {
+    resolve_active_defaults(b, pulled_tracer(2, 1.0, D, 0.0, 1).table, nlohmann::json::object(), "cfg.json", details);
+    ADD_FAILURE() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.json_path(), "steady_distance");
+  }
+}
+
 TEST_F(MicrorheologyTest, SingleReplicaUsesTimeBlocksAndTheTracerPositionObservableWins) {
   const double D = 0.1, v = 2.0;
   // The frames hold a tracer that does not move; the observable (recorded more often) holds the pulled path.
@@ -597,6 +665,15 @@ TEST(MicrorheologySettings, KeysAreParsedAndCheckedWithTheirPaths) {
   nlohmann::json both = {{"species", "tracer"}, {"beta_force", 1.0}, {"pe", 1.0}};
   io::ConfigNode both_cfg(both, "cfg.json");
   EXPECT_THROW(parse_active_microrheology_settings(both_cfg), InputError);
+  // steady_from decides where the steady part starts: steady_distance beside it has no effect
+  nlohmann::json window_twice = {{"species", "tracer"}, {"steady_from", 1.0}, {"steady_distance", 1.0}};
+  io::ConfigNode twice_cfg(window_twice, "cfg.json");
+  try {
+    parse_active_microrheology_settings(twice_cfg);
+    ADD_FAILURE() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.json_path(), "steady_distance");
+  }
 
   nlohmann::json p = {{"species", "probe"}, {"tracer_diameter", 3.0}, {"fit", {{"t_min", 10.0}, {"t_max", 100.0}}}};
   io::ConfigNode pcfg(p, "cfg.json");

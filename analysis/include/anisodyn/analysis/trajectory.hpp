@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -77,6 +78,10 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& patterns,
 
 /// Replicas must agree on particle count, species of each particle, frame count, and frame times
 /// within `time_tolerance` (relative to the last time); otherwise → InputError naming both files.
+/// With kIndependentTimes only the particles and species are compared: for stages that analyse
+/// each replica on its own time axis (a pulled tracer's drift), whose runs may end at different
+/// mapped times and hold different numbers of frames.
+constexpr double kIndependentTimes = std::numeric_limits<double>::infinity();
 void check_replica_matches(const Trajectory& first, const Trajectory& other, double time_tolerance = 0.05);
 
 /// Loads each replica in turn, checks it against the first and calls fn(trajectory, index).
