@@ -14,8 +14,11 @@ OrientationRule parse_orientation(std::optional<io::ConfigNode> node, const Shap
   OrientationRule rule;
   rule.body_axis = default_alignment_axis(shape);
   if (!node) return rule;
+  if (!shape.is_anisotropic()) node->fail("", "no orientation for a sphere (it has none: the block has no effect)");
   rule.mode = node->choice("mode", {"aligned", "random"}, "aligned") == "aligned" ? OrientationRule::Mode::Aligned
                                                                                    : OrientationRule::Mode::Random;
+  for (const char* key : {"axis", "director", "random_azimuth"})
+    node->reject_unless(rule.mode == OrientationRule::Mode::Aligned, key, "with random orientations (it shapes an aligned start)");
   const std::string axis = node->choice("axis", {"auto", "T", "W", "L"}, "auto");
   if (axis != "auto") rule.body_axis = axis == "T" ? 0 : axis == "W" ? 1 : 2;
   rule.director = node->vec3("director", Vec3::UnitZ());
@@ -65,15 +68,16 @@ State build_configuration(io::ConfigNode& cfg, const std::optional<State>& exist
     req.counts[s] += static_cast<std::size_t>(e.positive_integer("count"));
     req.rules[s] = parse_orientation(e.optional_object("orientation"), state.species[s].shape);
   }
-  req.max_attempts_per_particle = static_cast<std::size_t>(cfg.positive_integer("max_attempts_per_particle", 10000));
-
   const std::string placement = cfg.choice("placement", {"lattice", "random"}, existing ? "random" : "lattice");
+  cfg.reject_unless(placement == "random", "max_attempts_per_particle", "with lattice placement (it bounds random insertion)");
+  req.max_attempts_per_particle = static_cast<std::size_t>(cfg.positive_integer("max_attempts_per_particle", 10000));
   if (existing) {
     if (placement != "random") cfg.fail("placement", "expected \"random\" when inserting into an existing configuration");
     if (cfg.has("box")) cfg.fail("box", "expected no box when inserting into an existing configuration (its box is kept)");
   } else {
     auto box = cfg.object("box");
     if (box.has("edges") == box.has("packing_fraction")) box.fail("", "expected either \"edges\" or \"packing_fraction\" (with optional \"aspect\")");
+    box.reject_unless(!box.has("edges"), "aspect", "with explicit edges (it shapes the box built from a packing fraction)");
     if (box.has("edges")) {
       state.box = Box(box.positive_vec3("edges"));
     } else {
