@@ -4,7 +4,9 @@
 //  - an ideal bath of points, which relax a thousand times faster than the tracer, leaves the
 //    friction at its free value: γ_eff/γ_0 = 1 within 3 SE;
 //  - the overlap pass A_0 of that bath differs from 1 and equals its value from the geometry of
-//    the displaced exclusion sphere (an independent quadrature, tests/support);
+//    the displaced exclusion sphere (an independent quadrature, tests/support); and so does the
+//    A_0 ≈ 0.9 of a ten times denser bath at Pe = 0, where the equilibrium of the whole chain makes
+//    the bath at every tracer trial exactly uniform outside the tracer;
 //  - a hard-sphere bath at η = 0.30 (equal spheres, Pe = 2) raises the friction: γ_eff/γ_0 − 1 > 4 SE.
 // Fixed seeds; every asserted SE is also bounded from above.
 #include <gtest/gtest.h>
@@ -80,6 +82,33 @@ TEST_F(PulledTracerBath, IdealPointBathLeavesTheFrictionFreeAndPassesAsItsGeomet
   const double E = 1.5 * theory.at - 0.5 * theory.a0;
   std::printf("single-trial theory with A_0 = overlap pass: gamma_eff/gamma_0 = %.4f\n",
               stokes_einstein(bath.tracer_diameter) * beta_force * E * r.tracer_dt / 3.0 / theory.drift);
+}
+
+TEST_F(PulledTracerBath, DensePointBathAtZeroForcePassesAsItsGeometrySays) {
+  // At Pe = 0 DMC samples the equilibrium of tracer and bath together and picks the particle of a
+  // trial independently of the state, so every tracer trial sees the 80 points independent and
+  // uniform outside it: A_0 is the geometric expectation exactly. (With a force, the points the
+  // tracer has just uncovered behind it stay away until they are next tried, about one cycle: a
+  // memory that a single-trial calculation leaves out.)
+  BathSystem bath;
+  bath.box = 2.0;  // the minimum image needs twice the tracer's self cut-off
+  bath.points = 80;
+  bath.bath_diameter = 0.001;
+  bath.mc_cycles = 200;
+  TracerRun r;
+  r.pe = 0.0;
+  r.tracer_dt = 0.005;
+  r.preliminary_cycles = 2000;
+  r.cycles = 12000;
+  const Campaign c = run(bath, r, 16, "dense");
+  const double R = bath.contact(), d = std::sqrt(2.0 * stokes_einstein(bath.tracer_diameter) * r.tracer_dt);
+  const double free_volume = std::pow(bath.box, 3) - 4.0 / 3.0 * std::numbers::pi * R * R * R;
+  const PointBathTrial theory = point_bath_trial(bath.points, free_volume, R, 0.0, d, d);
+  const analysis::Estimate a0 = tracer_summary_mean(c.summaries, "overlap_pass");
+  std::printf("dense point bath, Pe = 0: A_0 = %.5f ± %.5f (geometry %.5f)\n", a0.value, a0.error, theory.a0);
+  EXPECT_GT(1.0 - theory.a0, 0.08);
+  EXPECT_LT(a0.error, 0.05 * (1.0 - theory.a0));
+  EXPECT_NEAR(a0.value, theory.a0, 4.0 * a0.error);
 }
 
 TEST_F(PulledTracerBath, HardSphereBathAtPackingFractionPointThreeRaisesTheFriction) {
