@@ -12,7 +12,7 @@ import sys
 import time
 
 from .expand import grid_points
-from .manifest import format_value
+from .manifest import ENGINE_TOOLS, format_value
 
 EXIT_FAILED = 3
 
@@ -122,8 +122,39 @@ class Report:
             lines += ["## Plots", ""]
         for k, plot in enumerate(plots):
             lines += self.plot(plot, k)
+        lines += self.diffusion_sources()
         lines += self.all_scalars()
         return lines
+
+    def diffusion_sources(self):
+        """Where each species' diffusion tensors came from: the engine outputs' provenance records the
+        species file and entry (or "configuration" for values given in the stage's parameters)."""
+        import h5py
+        import json
+        rows = {}
+        for st in self.m["stages"]:
+            if st["tool"] not in ENGINE_TOOLS:
+                continue
+            for job in self.stage_jobs(st["name"]):
+                try:
+                    with h5py.File(self.path(job), "r") as f:
+                        text = f["parameters/provenance"][()] if "parameters/provenance" in f else b"{}"
+                except OSError:
+                    continue
+                sources = json.loads(text.decode() if isinstance(text, bytes) else text).get("diffusion_sources", {})
+                for species, origin in sources.items():
+                    if isinstance(origin, dict):
+                        where = f"`{origin['file']}`, entry `{origin['species']}`"
+                        reference = origin.get("source", "")
+                    else:
+                        where, reference = f"{origin} (stage `{st['name']}`)", ""
+                    rows[(point_text(job.point), species, where)] = reference
+        if not rows:
+            return []
+        lines = ["## Diffusion tensors", "", "Where each species' infinite-dilution diffusion tensors came from (provenance of the "
+                 "engine outputs).", "", "| grid point | species | taken from | published source |", "|---|---|---|---|"]
+        lines += [f"| {p} | {sp} | {w} | {ref} |" for (p, sp, w), ref in sorted(rows.items())]
+        return lines + [""]
 
     # --- tables ---------------------------------------------------------------------------
     def scalar_table(self, block, k):

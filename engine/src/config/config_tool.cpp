@@ -29,13 +29,15 @@ OrientationRule parse_orientation(std::optional<io::ConfigNode> node, const Shap
 
 /// Merges the configuration's species into `table`: a name already present must describe the same
 /// species. Returns the index of each configured species in the table.
-std::map<std::string, int> merge_species(SpeciesTable& table, io::ConfigNode& cfg) {
+std::map<std::string, int> merge_species(SpeciesTable& table, io::ConfigNode& cfg, nlohmann::json& origins) {
   std::map<std::string, int> index;
   for (std::size_t s = 0; s < table.size(); ++s) index[table[s].name] = static_cast<int>(s);
   if (!cfg.has("species")) return index;
   auto nodes = cfg.objects("species");
   for (auto& n : nodes) {
-    Species sp = parse_species(n);
+    nlohmann::json origin;
+    Species sp = parse_species(n, &origin);
+    if (!origin.is_null()) origins[sp.name] = origin;
     auto it = index.find(sp.name);
     if (it == index.end()) {
       index[sp.name] = static_cast<int>(table.size());
@@ -49,11 +51,14 @@ std::map<std::string, int> merge_species(SpeciesTable& table, io::ConfigNode& cf
 
 }  // namespace
 
-State build_configuration(io::ConfigNode& cfg, const std::optional<State>& existing, std::uint64_t seed, std::uint64_t replica) {
+State build_configuration(io::ConfigNode& cfg, const std::optional<State>& existing, std::uint64_t seed, std::uint64_t replica,
+                          nlohmann::json* diffusion_origins) {
   State state;
   if (existing) state = *existing;
   if (!existing && !cfg.has("species")) cfg.fail("species", "expected the species table (an array of species)");
-  const auto index = merge_species(state.species, cfg);
+  nlohmann::json origins = nlohmann::json::object();
+  const auto index = merge_species(state.species, cfg, origins);
+  if (diffusion_origins) *diffusion_origins = origins;
 
   PlacementRequest req;
   req.counts.assign(state.species.size(), 0);

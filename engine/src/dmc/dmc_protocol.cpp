@@ -243,7 +243,9 @@ DmcProtocol parse_dmc_protocol(io::ConfigNode& cfg) {
         d.first = f.D_trans;
         d.second = f.D_rot;
         p.diffusion_shape.emplace(name, f.shape);
+        p.diffusion_origins[name] = f.origin;
       }
+      if (node.has("D_trans") || node.has("D_rot")) p.diffusion_origins[name] = "configuration";
       if (node.has("D_trans")) d.first = node.vec3("D_trans");
       if (node.has("D_rot")) {
         d.second = node.vec3("D_rot");

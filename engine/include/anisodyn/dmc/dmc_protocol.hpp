@@ -66,6 +66,7 @@ struct DmcProtocol {
   /// Diffusion coefficients replacing those of the input's species table.
   std::map<std::string, std::pair<std::optional<Vec3>, std::optional<Vec3>>> diffusion;
   std::map<std::string, Shape> diffusion_shape;  // shapes of entries taken from species files (checked against the input)
+  nlohmann::json diffusion_origins = nlohmann::json::object();  // species name → where its override came from
   // Keys whose effect depends on the input's species (checked by check_protocol_species): the path
   // of the first preliminary-run key given, of the first rotation-move key given, and of each
   // species' rotational diffusion given.
