@@ -30,13 +30,26 @@ class MsdTest : public anisodyn::testing_support::ScratchDirTest {
  protected:
   MsdTest() : ScratchDirTest("msd") {}
 
-  MsdResult run(const std::vector<std::string>& paths, MsdSettings s) {
+  /// The analysis after every replica of `paths` (all particles).
+  static MsdAnalysis accumulated(const std::vector<std::string>& paths, const MsdSettings& s) {
     MsdAnalysis a(s, paths.size());
     TrajectoryNeeds needs;
     needs.positions = true;
     needs.orientations = true;
     for_each_replica(paths, needs, [&](const Trajectory& t, std::size_t) { a.accumulate(t, -1); });
-    return a.compute();
+    return a;
+  }
+  static MsdResult run(const std::vector<std::string>& paths, const MsdSettings& s) { return accumulated(paths, s).compute(); }
+
+  /// One file of Gaussian walks per replica, seeds seed, seed + 1, …
+  std::vector<std::string> walk_files(const std::string& stem, std::size_t replicas, std::size_t particles,
+                                      const std::vector<double>& time, const Vec3& D, unsigned seed, const Vec3& box = Vec3(20, 20, 20)) {
+    std::vector<std::string> paths;
+    for (unsigned r = 0; r < replicas; ++r) {
+      paths.push_back(file(stem + std::to_string(r) + ".h5"));
+      gaussian_walks(particles, time, D, seed + r, box).write(paths.back());
+    }
+    return paths;
   }
 };
 
@@ -111,11 +124,7 @@ TEST_F(MsdTest, GaussianWalksGiveLinearMsdPerAxisAndZeroNgp) {
   ErrorBounds bounds;
   const Vec3 D(0.5, 0.5, 2.0);
   const std::size_t particles = 200, replicas = 10;
-  std::vector<std::string> paths;
-  for (unsigned r = 0; r < replicas; ++r) {
-    paths.push_back(file("walk" + std::to_string(r) + ".h5"));
-    gaussian_walks(particles, linear_times(201, 0.1), D, 100 + r, Vec3(5, 6, 7)).write(paths.back());
-  }
+  const auto paths = walk_files("walk", replicas, particles, linear_times(201, 0.1), D, 100, Vec3(5, 6, 7));
   MsdSettings s;
   s.reference = MsdReference::Vector;
   s.direction = Vec3::UnitZ();
@@ -162,11 +171,7 @@ TEST_F(MsdTest, AnisotropicNgpConstantMakesTheAnisotropicGaussianZero) {
   ErrorBounds bounds;
   const Vec3 D(0.2, 0.2, 3.0);
   const std::size_t particles = 300, replicas = 3;
-  std::vector<std::string> paths;
-  for (unsigned r = 0; r < replicas; ++r) {
-    paths.push_back(file("aniso" + std::to_string(r) + ".h5"));
-    gaussian_walks(particles, linear_times(101, 0.05), D, 7 + r).write(paths.back());
-  }
+  const auto paths = walk_files("aniso", replicas, particles, linear_times(101, 0.05), D, 7);
   MsdSettings s;
   s.reference = MsdReference::Vector;
   s.direction = Vec3::UnitZ();
@@ -303,17 +308,10 @@ TEST_F(MsdTest, SingleReplicaUsesOriginBlocksForErrorsAndLogFramesAreBinned) {
 }
 
 TEST_F(MsdTest, SamplesOfAComponentAreTheCurvesBehindItsMsdAndError) {
-  std::vector<std::string> paths;
-  for (unsigned r = 0; r < 3; ++r) {
-    paths.push_back(file("samples" + std::to_string(r) + ".h5"));
-    gaussian_walks(50, linear_times(31, 0.1), Vec3(1, 2, 3), 40 + r).write(paths.back());
-  }
+  const auto paths = walk_files("samples", 3, 50, linear_times(31, 0.1), Vec3(1, 2, 3), 40);
   MsdSettings s;
   s.reference = MsdReference::Vector;
-  MsdAnalysis a(s, paths.size());
-  TrajectoryNeeds needs;
-  needs.positions = true;
-  for_each_replica(paths, needs, [&](const Trajectory& t, std::size_t) { a.accumulate(t, -1); });
+  const MsdAnalysis a = accumulated(paths, s);
   const MsdResult r = a.compute();
   for (const char* name : {"tot", "x", "par", "perp"}) {
     const CurveSamples c = a.samples_of(name);
