@@ -283,4 +283,15 @@ MsdResult MsdAnalysis::compute() const {
   return r;
 }
 
+CurveSamples MsdAnalysis::samples_of(const std::string& name) const {
+  const auto it = std::find(names_.begin(), names_.end(), name);
+  if (it == names_.end()) throw RuntimeFailure("no MSD component " + name);
+  // a sample holds (component, moment) blocks of nc values; the MSD is moment 0
+  const std::size_t nc = grid_.classes.size(), first = 2 * static_cast<std::size_t>(it - names_.begin()) * nc;
+  CurveSamples out;
+  for (const auto& s : samples_.samples())
+    out.add(std::vector<double>(s.begin() + static_cast<std::ptrdiff_t>(first), s.begin() + static_cast<std::ptrdiff_t>(first + nc)));
+  return out;
+}
+
 }  // namespace anisodyn::analysis

@@ -5,7 +5,7 @@
 #include <limits>
 #include <sstream>
 
-#include "anisodyn/analysis/dipolar_clusters.hpp"  // close_pairs
+#include "anisodyn/analysis/pair_search.hpp"
 #include "anisodyn/analysis/union_find.hpp"
 #include "anisodyn/core/error.hpp"
 #include "anisodyn/system/order.hpp"

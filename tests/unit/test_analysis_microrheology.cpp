@@ -72,7 +72,6 @@ TEST_F(MicrorheologyTest, ViscousFluidGivesLossModulusEtaOmegaAndNoStorageModulu
   EXPECT_NEAR(r.evans_t_max, r.fit_t_max, 1e-9);  // the Evans sum stops at the end of the D_long window
   // A handful of frequencies across the grid (every one would be many correlated 4σ comparisons).
   const std::size_t n = r.time.size();
-  int checked = 0;
   for (std::size_t k : {std::size_t{3}, n / 5, 2 * n / 5, 3 * n / 5, 4 * n / 5}) {
     const double w = r.mason.omega[k];
     std::printf("viscous: omega %7.3f  G''/(eta omega): Mason %.4f ± %.4f, Evans %.4f ± %.4f;  G'/(eta omega): Mason %+.4f ± %.4f, Evans %+.4f ± %.4f\n",
@@ -91,9 +90,7 @@ TEST_F(MicrorheologyTest, ViscousFluidGivesLossModulusEtaOmegaAndNoStorageModulu
     // the errors are real errors, positive and small enough for the 4 SE comparisons to bite
     EXPECT_GT(r.mason_error.loss[k], 0.0);
     EXPECT_LT(r.mason_error.loss[k], 0.2 * eta * w);
-    ++checked;
   }
-  EXPECT_EQ(checked, 5);
   // the shortest lags have fewer than 4 points within ±0.25 decade: no Mason value there
   EXPECT_TRUE(std::isnan(r.mason.loss[0]));
 }
@@ -205,9 +202,8 @@ TEST(MaxwellFluid, MasonFollowsTheGserClosedFormAndItsErrorAgainstEvansIsMeasure
   // Near the crossover the GSER itself is ~20 % low (α changes quickly there): it is the method, not
   // the implementation (the closed-form check above), so the spec's 5 % Mason–Evans agreement does
   // not hold at ωλ ≈ 1. Pin the measured size so that a change shows.
-  // at ωλ = 1: α = 1/2, |G*| = G0/(2Γ(3/2)), G′ = |G*| cos(π/4) against the exact G0/2
+  // at ωλ = 1: α = 1/2, |G*| = G0/(2Γ(3/2)), G′ = |G*| cos(π/4), 20.2 % below the exact G0/2
   const double gser = m.G0 / (2.0 * std::tgamma(1.5)) * std::cos(kPi / 4);
-  EXPECT_NEAR(gser / m.storage(1.0 / m.lambda()) - 1.0, -0.2021, 1e-3);
   EXPECT_NEAR(g.storage[t.size() / 2] / gser - 1.0, 0.0, 1e-3);  // t_40 = λ: ωλ = 1 on the grid
   EXPECT_GT(worst_near_crossover, 0.15);
 }

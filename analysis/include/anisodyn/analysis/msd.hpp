@@ -66,6 +66,10 @@ class MsdAnalysis {
   /// Adds one replica (particles of species `species_index`, all if < 0).
   void accumulate(const Trajectory& t, int species_index);
   MsdResult compute() const;
+  /// The mean MSD of component `name` (MsdResult::component names) in each error sample (replica,
+  /// or block of time origins for one replica) on the lag classes: what the errors and the
+  /// jackknife of quantities derived from the MSD (passive microrheology) are made of.
+  CurveSamples samples_of(const std::string& name) const;
 
  private:
   struct Impl;

@@ -6,8 +6,9 @@
 //     (Decision of §4.2: the factor 2 counts both sides of the reference plane, so g_∥, g_⊥ → 1);
 //   ρ_r(s)   = ⟨N_s in [s, s+Δs)⟩ / (A Δs) / (N/V) along x, y, z, with A = V/L_s the slab area
 //     (V^{2/3} of §1.7 for a cubic box), Δs = L/50 by default.
-// Pairs use the minimum image (O(N²) per frame, fine for a few thousand particles). A bin whose
-// shell or cylinder does not fit inside the minimum-image cell is NaN. Curves are averaged over
+// Pairs use the minimum image and come from the cell lists of pair_search.hpp (the pairs within
+// reach of a histogram, each once). A bin whose shell or cylinder does not fit inside the
+// minimum-image cell is NaN. Curves are averaged over
 // the selected frames, then over replicas with the standard error over replicas; a single
 // replica is split into blocks of frames for the error.
 #include <array>
