@@ -1,14 +1,16 @@
 #!/usr/bin/env python3
-"""Runs manifests/quickstart.json and every manifests/*-smoke.json with anisodyn-run (2 workers)
-and checks each: exit 0, a report (summary.md, at least one PNG when the manifest asks for plots),
+"""Runs manifests/quickstart.json and every manifests/*-smoke.json with anisodyn-run and checks each: exit 0, a report (summary.md, at least one PNG when the manifest asks for plots),
 and every scalar of every analysis output finite and physically sane: diffusion coefficients,
 response times and friction ratios > 0; uniaxial order parameters U in [0, 1]; fractions (X_c,
 p_b) in [0, 1]. Every engine trajectory (H5MD) must have finite positions, unit quaternions,
 strictly increasing frame times and acceptances in [0, 1]; a DMC run that balanced several species
 at equilibrium must report a realised balance within 5% of 1 (a sanity bound for short smoke runs;
 the 0.5% acceptance check is the full-size run in docs/validation.md). Prints each manifest's
-wall time. A manifest name given as a fourth argument runs
-only that one."""
+wall time.
+
+argv: [1] build bin dir, [2] scratch dir, [3] source dir, [4] optional: the one manifest to run
+(name with or without .json; ctest registers one test per manifest, study_manifests.cmake),
+[5] optional: runner workers (default 2)."""
 import glob
 import json
 import math
@@ -24,9 +26,10 @@ import numpy as np
 
 bin_dir, tmp, source = sys.argv[1], sys.argv[2], sys.argv[3]
 only = sys.argv[4] if len(sys.argv) > 4 else None
+workers = int(sys.argv[5]) if len(sys.argv) > 5 else 2
 shutil.rmtree(tmp, ignore_errors=True)
 os.makedirs(tmp)
-runner = [sys.executable, os.path.join(source, "workflows", "anisodyn-run"), "--bin", bin_dir, "--jobs", "2", "--quiet",
+runner = [sys.executable, os.path.join(source, "workflows", "anisodyn-run"), "--bin", bin_dir, "--jobs", str(workers), "--quiet",
           "--results", tmp]
 manifests = [os.path.join(source, "manifests", "quickstart.json")] + sorted(glob.glob(os.path.join(source, "manifests", "*-smoke.json")))
 if only:
@@ -117,7 +120,7 @@ for path in manifests:
     status = "ok  " if not problems else "FAIL"
     if notes:
         print(f"     note: {len(notes)} scalar(s) NaN with a documented meaning: {sorted(set(notes))}")
-    print(f"{status} {os.path.basename(path)}: {wall:.1f} s on 2 workers, {checked} scalars checked" + ("" if not problems else "\n    " + "\n    ".join(problems[:10])))
+    print(f"{status} {os.path.basename(path)}: {wall:.1f} s on {workers} worker{'s' if workers > 1 else ''}, {checked} scalars checked" + ("" if not problems else "\n    " + "\n    ".join(problems[:10])))
     failures += bool(problems)
 print(f"{failures} failed")
 assert failures == 0, f"{failures} manifest(s) failed (see above)"
