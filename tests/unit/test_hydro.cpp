@@ -47,6 +47,20 @@ std::vector<Vec3> irregular_beads(std::size_t n, unsigned seed) {
   return out;
 }
 
+/// A shell at σ_b = 0.1: every bead on the surface, nearest-neighbour spacing ≈ 2σ_b (no bead is
+/// isolated and none coincide).
+void expect_beads_on_surface_about_2_sigma_apart(const HydroShape& s, const std::vector<Vec3>& beads) {
+  ASSERT_GT(beads.size(), 50u);
+  for (const auto& b : beads) ASSERT_TRUE(on_surface(s, b, 1e-9)) << b.transpose();
+  for (std::size_t i = 0; i < beads.size(); i += 7) {
+    double nearest = 1e9;
+    for (std::size_t j = 0; j < beads.size(); ++j)
+      if (j != i) nearest = std::min(nearest, (beads[i] - beads[j]).norm());
+    EXPECT_GT(nearest, 0.02);
+    EXPECT_LT(nearest, 0.4);
+  }
+}
+
 }  // namespace
 
 TEST(RpyMobility, FarFieldIsTheOseenTensor) {
@@ -134,16 +148,7 @@ TEST(ShellSurface, BeadsLieOnTheSurfaceAndKeepTheMirrorSymmetry) {
                                        HydroShape::sphere_union({Vec3(0, 0, -0.6), Vec3(0, 0, 0), Vec3(0, 0, 0.6)}, {0.5, 0.5, 0.5})};
   for (const auto& s : shapes) {
     const auto beads = shell_beads(s, 0.1);
-    ASSERT_GT(beads.size(), 50u);
-    for (const auto& b : beads) ASSERT_TRUE(on_surface(s, b, 1e-9)) << b.transpose();
-    // Nearest-neighbour spacing ≈ 2σ_b: no bead is isolated and none coincide.
-    for (std::size_t i = 0; i < beads.size(); i += 7) {
-      double nearest = 1e9;
-      for (std::size_t j = 0; j < beads.size(); ++j)
-        if (j != i) nearest = std::min(nearest, (beads[i] - beads[j]).norm());
-      EXPECT_GT(nearest, 0.02);
-      EXPECT_LT(nearest, 0.4);
-    }
+    expect_beads_on_surface_about_2_sigma_apart(s, beads);
     if (s.kind != HydroShapeKind::Ellipsoid || s.semi_axes.x() == s.semi_axes.y())
       EXPECT_EQ(find_mirror_symmetry(beads, 1e-9).operations.size(), 8u);
   }
@@ -154,15 +159,7 @@ TEST(ShellSurface, CellCentreBeadsLieOnTheSurfaceOffTheEdgesAndKeepTheMirrorSymm
                                        HydroShape::cylinder(4.0, 1.0), HydroShape::cuboid(Vec3(1.0, 3.4641, 12.0))};
   for (const auto& s : shapes) {
     const auto beads = cell_centre_beads(s, 0.1);
-    ASSERT_GT(beads.size(), 50u);
-    for (const auto& b : beads) ASSERT_TRUE(on_surface(s, b, 1e-9)) << b.transpose();
-    for (std::size_t i = 0; i < beads.size(); i += 7) {
-      double nearest = 1e9;
-      for (std::size_t j = 0; j < beads.size(); ++j)
-        if (j != i) nearest = std::min(nearest, (beads[i] - beads[j]).norm());
-      EXPECT_GT(nearest, 0.02);
-      EXPECT_LT(nearest, 0.4);
-    }
+    expect_beads_on_surface_about_2_sigma_apart(s, beads);
     EXPECT_EQ(find_mirror_symmetry(beads, 1e-9).operations.size(), 8u);
   }
   // Cuboid cells: the nearest bead to an edge is half a cell (σ_b) from each face meeting there.
