@@ -386,6 +386,36 @@ TEST_F(MicrorheologyTest, SingleReplicaUsesTimeBlocksAndTheTracerPositionObserva
   }
 }
 
+TEST_F(MicrorheologyTest, AWindowLimitsTheTracerPathObservableToItsTimes) {
+  const double D = 0.1, v = 2.0;
+  SyntheticTrajectory t = pulled_tracer(21, 1.0, D, 0.0, 5);
+  const SyntheticTrajectory path = pulled_tracer(2001, 0.01, D, v, 6);
+  std::vector<std::pair<double, std::vector<double>>> rows;
+  for (std::size_t f = 0; f < path.time.size(); ++f) rows.push_back({path.time[f], {path.position[f][0].x(), path.position[f][0].y(), path.position[f][0].z()}});
+  t.observables.push_back({"tracer_position", rows});
+  const std::string p = file("window.h5");
+  t.write(p);
+  ActiveMicrorheologySettings s;
+  s.species = "tracer";
+  s.beta_force = v / D;
+  s.D_s = D;
+  s.steady_distance = 0.0;  // steady from the window's first sample
+  s.density_map = false;
+  TrajectoryNeeds needs = positions_and_observables();
+  needs.window.given = true;
+  needs.window.from = 10.0;
+  needs.window.to = 15.0;
+  ActiveMicrorheology a(s, 1);
+  for_each_replica({p}, needs, [&](const Trajectory& tr, std::size_t) { a.accumulate(tr); });
+  const ActiveResult r = a.compute();
+  EXPECT_EQ(r.path_source, "observable tracer_position");
+  // the fitted path is the observable's rows with 10 ≤ t ≤ 15 (501 rows at 0.01 τ)
+  EXPECT_NEAR(r.replicas[0].t_start, 10.0, 1e-9);
+  EXPECT_NEAR(r.replicas[0].t_end, 15.0, 1e-9);
+  EXPECT_EQ(r.replicas[0].points, 501u);
+  EXPECT_NEAR(r.gamma_ratio.value, 1.0, 4 * r.gamma_ratio.error);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Active: density maps (in-memory replicas: many bath particle-frames, no file I/O)
 

@@ -285,3 +285,41 @@ TEST_F(ResponseFileTest, FieldSwitchesObservableIsReadFromH5md) {
   EXPECT_NEAR(r.replicas[0].b_on, 1.0, 1e-12);
   EXPECT_NEAR(r.curve_time.front(), -5.0, 1e-12);
 }
+
+TEST_F(ResponseFileTest, AWindowMeasuresTheSwitchesInsideIt) {
+  // two cycles: on at 5, off at 12, on at 20, off at 27; the window from 15 holds the second
+  anisodyn::testing_support::SyntheticTrajectory st;
+  st.time = anisodyn::testing_support::linear_times(80, 0.5);
+  st.position.assign(80, std::vector<Vec3>(20, Vec3(1, 1, 1)));
+  st.orientation.assign(80, std::vector<Quat>(20, Quat::Identity()));
+  st.table = {Species{"H", Shape::cuboid(1, 2, 8), 1.0, Vec3::Ones(), Vec3::Ones()}};
+  st.observables.push_back(
+      {"field_switches", {{0.0, {0, 1, 0, 0}}, {5.0, {1, 1, 0, 0}}, {12.0, {0, 1, 0, 0}}, {20.0, {1, 1, 0, 0}}, {27.0, {0, 1, 0, 0}}}});
+  const std::string path = file("two.h5");
+  st.write(path);
+  auto analyse = [&](const FrameWindow& w, std::size_t cycle) {
+    TrajectoryNeeds needs;
+    needs.orientations = true;
+    needs.event_observables = {"field_switches"};
+    needs.window = w;
+    ResponseSettings rs;
+    rs.signal = "S_cube";
+    rs.cycle = cycle;
+    ResponseAnalysis a(rs);
+    for_each_replica({path}, needs, [&](const Trajectory& t, std::size_t) { a.accumulate(t, -1); });
+    return a.compute();
+  };
+  FrameWindow w;
+  w.given = true;
+  w.from = 15.0;
+  const ResponseResult windowed = analyse(w, 0), second = analyse(FrameWindow{}, 1);
+  EXPECT_EQ(windowed.replicas[0].switch_on, 20.0);  // cycle 0 counts the switch-ons inside the window
+  EXPECT_EQ(windowed.replicas[0].switch_off, 27.0);
+  EXPECT_EQ(second.replicas[0].switch_on, 20.0);
+  // the reference segment is the window's field-off frames before the switch-on: t = 15 … 19.5
+  EXPECT_EQ(windowed.replicas[0].reference_frames, 10u);
+  EXPECT_NEAR(windowed.curve_time.front(), -5.0, 1e-12);  // time since the switch-on, from the window's first frame
+  // a window without a switch-on inside
+  w.from = 28.0;
+  EXPECT_THROW(analyse(w, 0), InputError);
+}
