@@ -15,6 +15,7 @@
 #include "input_error.hpp"
 #include "scratch_dir.hpp"
 #include "synthetic_trajectory.hpp"
+#include "time_window.hpp"
 
 using namespace anisodyn;
 using namespace anisodyn::analysis;
@@ -395,12 +396,9 @@ TEST_F(DipolarChainTest, AWindowKeepsTrajectoryTimeAndFileFrameIndices) {
   syn.position.assign(4, planted_chains({2, 3}, 4));
   const std::string chains = file("chains.h5");
   syn.write(chains);
-  FrameWindow w;
-  w.given = true;
-  w.from = 1.0;
   TrajectoryNeeds needs;
   needs.positions = true;
-  needs.window = w;
+  needs.window = testing_support::time_window(1.0, std::nullopt);
   DipolarClusterSettings ds;
   ds.rule = cube_rule();
   DipolarChainAnalysis d(ds);
@@ -421,9 +419,8 @@ TEST_F(DipolarChainTest, AWindowKeepsTrajectoryTimeAndFileFrameIndices) {
   boards.table = {Species{"board", Shape::cuboid(1, 1, 12), 1.0, Vec3::Ones(), Vec3::Ones()}};
   const std::string nematic = file("boards.h5");
   boards.write(nematic);
-  w.from = 2.0;
   needs.orientations = true;
-  needs.window = w;
+  needs.window = testing_support::time_window(2.0, std::nullopt);
   NematicClusterAnalysis n(prolate_settings(), 1);
   for_each_replica({nematic}, needs, [&](const Trajectory& t, std::size_t) { n.accumulate(t, -1); });
   const NematicClusterResult nr = n.compute();

@@ -8,6 +8,7 @@
 #include "input_error.hpp"
 #include "scratch_dir.hpp"
 #include "synthetic_trajectory.hpp"
+#include "time_window.hpp"
 
 using namespace anisodyn;
 using namespace anisodyn::analysis;
@@ -156,11 +157,7 @@ TEST_F(MsdTest, AWindowGivesTheMsdOfTheTruncatedTrajectory) {
     walk.write(full.back());
     frames_of(walk, 20, 26, 2).write(cut.back());
   }
-  FrameWindow w;
-  w.given = true;
-  w.from = 2.0;
-  w.to = 7.0;
-  w.stride = 2;
+  const FrameWindow w = anisodyn::testing_support::time_window(2.0, 7.0, 2);
   MsdSettings s;
   s.reference = MsdReference::Vector;
   s.fit_window = std::make_pair(0.4, 2.0);

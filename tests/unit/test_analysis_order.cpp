@@ -14,6 +14,7 @@
 #include "input_error.hpp"
 #include "scratch_dir.hpp"
 #include "synthetic_trajectory.hpp"
+#include "time_window.hpp"
 
 using namespace anisodyn;
 using namespace anisodyn::analysis;
@@ -368,9 +369,7 @@ TEST_F(OrderFileTest, AWindowKeepsTrajectoryTimeOnTheCommonGrid) {
   st.write(path);
   TrajectoryNeeds needs;
   needs.orientations = true;
-  needs.window.given = true;
-  needs.window.from = 3.0;
-  needs.window.to = 6.0;
+  needs.window = anisodyn::testing_support::time_window(3.0, 6.0);
   OrderAnalysis a(OrderStageSettings{}, "order.json");
   const auto grid = for_each_replica({path}, needs, [&](const Trajectory& t, std::size_t) { a.accumulate(t, -1); });
   const OrderResult r = a.compute(grid);

@@ -8,6 +8,7 @@
 #include "anisodyn/core/quaternion.hpp"
 #include "scratch_dir.hpp"
 #include "synthetic_trajectory.hpp"
+#include "time_window.hpp"
 
 using namespace anisodyn;
 using namespace anisodyn::analysis;
@@ -127,12 +128,7 @@ TEST_F(RotationTest, AWindowGivesTheRotationOfTheTruncatedTrajectory) {
       for_each_replica(paths, needs, [&](const Trajectory& t, std::size_t) { a.accumulate(t, -1); });
       return a.compute();
     };
-    FrameWindow w;
-    w.given = true;
-    w.from = 0.3;
-    w.to = 0.9;
-    w.stride = 3;
-    const RotationResult windowed = analyse(full, w), truncated = analyse(cut, {});
+    const RotationResult windowed = analyse(full, anisodyn::testing_support::time_window(0.3, 0.9, 3)), truncated = analyse(cut, {});
     ASSERT_EQ(windowed.lag, truncated.lag) << exact;
     for (std::size_t k = 0; k < 3; ++k) {
       const auto &a = windowed.axes[k], &b = truncated.axes[k];

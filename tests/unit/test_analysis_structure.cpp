@@ -13,6 +13,7 @@
 #include "input_error.hpp"
 #include "scratch_dir.hpp"
 #include "synthetic_trajectory.hpp"
+#include "time_window.hpp"
 
 using namespace anisodyn;
 using namespace anisodyn::analysis;
@@ -197,9 +198,7 @@ TEST_F(PairStructureFileTest, TimeWindowWithStrideAndSingleReplicaBlocks) {
   syn.write(path);
   TrajectoryNeeds needs;
   needs.positions = true;
-  needs.window.given = true;
-  needs.window.from = 1.0;
-  needs.window.stride = 3;  // frames 2, 5, …, 59 (t = 1 … 29.5): 20 frames in 10 blocks
+  needs.window = anisodyn::testing_support::time_window(1.0, std::nullopt, 3);  // frames 2, 5, …, 59: 20 frames in 10 blocks
   PairStructureAnalysis a(PairStructureSettings{}, 1);
   for_each_replica({path}, needs, [&](const Trajectory& t, std::size_t) { a.accumulate(t); });
   const auto r = a.compute();

@@ -6,6 +6,7 @@
 #include "anisodyn/analysis/van_hove.hpp"
 #include "scratch_dir.hpp"
 #include "synthetic_trajectory.hpp"
+#include "time_window.hpp"
 
 using namespace anisodyn;
 using namespace anisodyn::analysis;
@@ -86,11 +87,7 @@ TEST_F(VanHoveTest, AWindowGivesTheVanHoveFunctionOfTheTruncatedTrajectory) {
     for_each_replica(paths, needs, [&](const Trajectory& t, std::size_t) { a.accumulate(t, -1); });
     return a.compute();
   };
-  FrameWindow w;
-  w.given = true;
-  w.from = 4.0;
-  w.to = 8.0;
-  const auto windowed = analyse(full, w), truncated = analyse(cut, {});
+  const auto windowed = analyse(full, anisodyn::testing_support::time_window(4.0, 8.0)), truncated = analyse(cut, {});
   ASSERT_EQ(windowed.size(), truncated.size());
   for (std::size_t k = 0; k < windowed.size(); ++k) {
     EXPECT_EQ(windowed[k].time, truncated[k].time);

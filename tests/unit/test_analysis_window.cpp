@@ -12,6 +12,7 @@
 #include "input_error.hpp"
 #include "scratch_dir.hpp"
 #include "synthetic_trajectory.hpp"
+#include "time_window.hpp"
 
 using namespace anisodyn;
 using namespace anisodyn::analysis;
@@ -19,18 +20,9 @@ using anisodyn::testing_support::gaussian_walks;
 using anisodyn::testing_support::input_error;
 using anisodyn::testing_support::linear_times;
 using anisodyn::testing_support::SyntheticTrajectory;
+using anisodyn::testing_support::time_window;
 
 namespace {
-
-FrameWindow window(std::optional<double> from, std::optional<double> to, std::size_t stride = 1) {
-  FrameWindow w;
-  w.given = true;
-  w.from = from;
-  w.to = to;
-  w.stride = stride;
-  w.config_file = "stage.json";
-  return w;
-}
 
 TrajectoryNeeds positions_in(const FrameWindow& w) {
   TrajectoryNeeds n;
@@ -58,7 +50,7 @@ std::vector<std::size_t> indices(const Trajectory& t) { return t.frame_index; }
 TEST_F(WindowTest, KeepsTheFramesInsideInclusiveBounds) {
   const std::string p = walk("w.h5", 1);
   const Trajectory all = load_trajectory(p, positions_in(FrameWindow{}));
-  const Trajectory t = load_trajectory(p, positions_in(window(2.0, 5.0)));
+  const Trajectory t = load_trajectory(p, positions_in(time_window(2.0, 5.0)));
   ASSERT_EQ(t.frames, 4u);
   EXPECT_EQ(indices(t), (std::vector<std::size_t>{2, 3, 4, 5}));
   EXPECT_EQ(t.time, (std::vector<double>{2, 3, 4, 5}));
@@ -69,11 +61,11 @@ TEST_F(WindowTest, KeepsTheFramesInsideInclusiveBounds) {
 
 TEST_F(WindowTest, OpenEndsAndStride) {
   const std::string p = walk("w.h5", 2);
-  EXPECT_EQ(indices(load_trajectory(p, positions_in(window(std::nullopt, 3.0)))), (std::vector<std::size_t>{0, 1, 2, 3}));
-  EXPECT_EQ(indices(load_trajectory(p, positions_in(window(17.0, std::nullopt)))), (std::vector<std::size_t>{17, 18, 19}));
+  EXPECT_EQ(indices(load_trajectory(p, positions_in(time_window(std::nullopt, 3.0)))), (std::vector<std::size_t>{0, 1, 2, 3}));
+  EXPECT_EQ(indices(load_trajectory(p, positions_in(time_window(17.0, std::nullopt)))), (std::vector<std::size_t>{17, 18, 19}));
   // every 3rd frame of the window, from its first: 1, 4, 7, 10 (13 is past the end 11.5)
   const Trajectory all = load_trajectory(p, positions_in(FrameWindow{}));
-  const Trajectory t = load_trajectory(p, positions_in(window(0.5, 11.5, 3)));
+  const Trajectory t = load_trajectory(p, positions_in(time_window(0.5, 11.5, 3)));
   EXPECT_EQ(indices(t), (std::vector<std::size_t>{1, 4, 7, 10}));
   for (std::size_t k = 0; k < t.frames; ++k) {
     EXPECT_EQ(t.time[k], all.time[1 + 3 * k]);
@@ -86,7 +78,7 @@ TEST_F(WindowTest, ADecimalBoundCatchesTheFrameStoredAtThatTime) {
   std::vector<double> time;
   for (int k = 0; k < 10; ++k) time.push_back(k * 0.1);  // 0.30000000000000004 is frame 3
   const std::string p = walk("w.h5", 3, time);
-  EXPECT_EQ(indices(load_trajectory(p, positions_in(window(0.3, 0.6)))), (std::vector<std::size_t>{3, 4, 5, 6}));
+  EXPECT_EQ(indices(load_trajectory(p, positions_in(time_window(0.3, 0.6)))), (std::vector<std::size_t>{3, 4, 5, 6}));
 }
 
 TEST_F(WindowTest, StridedReaderMatchesTheFullRead) {
@@ -112,7 +104,7 @@ TEST_F(WindowTest, ObservablesAreWindowedByTimeAndEventListsKeepTheStateInForce)
   s.observables = {{"series", series}, {"field_switches", switches}};
   const std::string p = file("obs.h5");
   s.write(p);
-  TrajectoryNeeds n = positions_in(window(4.0, 10.0, 3));
+  TrajectoryNeeds n = positions_in(time_window(4.0, 10.0, 3));
   n.observables = {"series"};
   n.event_observables = {"field_switches"};
   const Trajectory t = load_trajectory(p, n);
@@ -135,7 +127,7 @@ TEST_F(WindowTest, ReplicasShareTheFramesChosenOnTheCommonGrid) {
   std::vector<double> fast;
   for (double t : linear_times(20, 1.0)) fast.push_back(1.02 * t);
   const std::vector<std::string> paths{walk("a.h5", 6), walk("b.h5", 7, fast)};
-  TrajectoryNeeds n = positions_in(window(4.05, 10.15));
+  TrajectoryNeeds n = positions_in(time_window(4.05, 10.15));
   std::vector<std::vector<std::size_t>> seen;
   FrameSelection selected;
   const auto grid = for_each_replica(paths, n, [&](const Trajectory& t, std::size_t) { seen.push_back(t.frame_index); }, 0.05, &selected);
@@ -163,19 +155,19 @@ TEST_F(WindowTest, ReplicaTimesAreComparedOnTheWindowedFramesOnly) {
   auto visit = [](const Trajectory&, std::size_t) {};
   const InputError e = input_error([&] { for_each_replica(paths, positions_in(FrameWindow{}), visit); });
   EXPECT_NE(std::string(e.what()).find("mismatched replicas"), std::string::npos) << e.what();
-  EXPECT_NO_THROW(for_each_replica(paths, positions_in(window(std::nullopt, 9.5)), visit));
+  EXPECT_NO_THROW(for_each_replica(paths, positions_in(time_window(std::nullopt, 9.5)), visit));
   // the tolerance is relative to the time up to the last windowed frame: 0.3 τ apart at t = 4 is
   // within 5% of 19 τ but not of 4 τ
   std::vector<double> shifted = linear_times(20, 1.0);
   for (std::size_t f = 1; f < shifted.size(); ++f) shifted[f] += 0.3;
   const std::vector<std::string> near{walk("c.h5", 10), walk("d.h5", 11, shifted)};
   EXPECT_NO_THROW(for_each_replica(near, positions_in(FrameWindow{}), visit));
-  EXPECT_THROW(for_each_replica(near, positions_in(window(std::nullopt, 4.2)), visit), InputError);
+  EXPECT_THROW(for_each_replica(near, positions_in(time_window(std::nullopt, 4.2)), visit), InputError);
 }
 
 TEST_F(WindowTest, AWindowWithTooFewFramesNamesTheWindowAndTheFile) {
   const std::string p = walk("w.h5", 12);
-  TrajectoryNeeds n = positions_in(window(2.2, 2.8));
+  TrajectoryNeeds n = positions_in(time_window(2.2, 2.8));
   const InputError none = input_error([&] { for_each_replica({p}, n, [](const Trajectory&, std::size_t) {}); });
   EXPECT_EQ(none.file(), "stage.json");
   EXPECT_EQ(none.json_path(), "window");
@@ -183,7 +175,7 @@ TEST_F(WindowTest, AWindowWithTooFewFramesNamesTheWindowAndTheFile) {
   EXPECT_NE(msg.find("from: 2.2"), std::string::npos) << msg;
   EXPECT_NE(msg.find(p), std::string::npos) << msg;
   EXPECT_NE(msg.find("selects 0 frame(s)"), std::string::npos) << msg;
-  n.window = window(2.0, 2.8);
+  n.window = time_window(2.0, 2.8);
   n.min_frames = 2;  // one frame, a lag needs two
   const InputError one = input_error([&] { load_trajectory(p, n); });
   EXPECT_NE(std::string(one.what()).find("needs at least 2"), std::string::npos) << one.what();
