@@ -6,8 +6,8 @@
 #include <sstream>
 
 #include "anisodyn/analysis/dipolar_clusters.hpp"  // close_pairs
-#include "anisodyn/analysis/union_find.hpp"
 #include "anisodyn/analysis/frame_window.hpp"
+#include "anisodyn/analysis/union_find.hpp"
 #include "anisodyn/core/error.hpp"
 #include "anisodyn/system/order.hpp"
 

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <limits>
+#include <numeric>
 
 #include "anisodyn/analysis/frame_window.hpp"
 #include "anisodyn/analysis/order_parameters.hpp"

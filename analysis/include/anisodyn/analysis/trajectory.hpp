@@ -95,14 +95,16 @@ void check_replica_matches(const Trajectory& first, const Trajectory& other, dou
 /// The same over every frame.
 void check_replica_matches(const Trajectory& first, const Trajectory& other, double time_tolerance = 0.05);
 
+/// The frames a window chose and the replicas' common time grid (every frame) it chose them on.
+struct FrameSelection {
+  io::FrameSlice frames;
+  std::vector<double> grid;
+};
+
 /// Loads each replica in turn (the frames of needs.window on the common grid), checks it against
 /// the first and calls fn(trajectory, index). Returns the common time grid of the loaded frames:
 /// the mean time stamp of each frame over the replicas (spec 50 §0). `selected`, if given, receives
-/// the frames chosen and the full common grid they were chosen on.
-struct FrameSelection {
-  io::FrameSlice frames;
-  std::vector<double> grid;  // every frame of the files
-};
+/// the frames chosen and the grid they were chosen on.
 std::vector<double> for_each_replica(const std::vector<std::string>& paths, const TrajectoryNeeds& needs,
                                      const std::function<void(const Trajectory&, std::size_t)>& fn,
                                      double time_tolerance = 0.05, FrameSelection* selected = nullptr);
