@@ -87,6 +87,7 @@ void run_passive(StageRun& run) {
   PassiveMicrorheology p(s, run.inputs.size(), run.opt.config_name());
   TrajectoryNeeds needs;
   needs.positions = true;
+  needs.min_frames = 2;  // one lag
   run.each_replica(needs, [&](const Trajectory& t, std::size_t) { p.accumulate(t); });
   write_passive(run, p.compute());
 }
@@ -214,7 +215,7 @@ int main(int argc, char** argv) {
                           "passive: radius | tracer_diameter, kT, alpha_fit_decades, lags_per_decade, max_origins, fit {t_min, t_max}, evans_t_max. "
                           "active: beta_force | force (+ kT) | pe (+ radius | tracer_diameter), D_s, direction, bath_species, steady_distance, "
                           "steady_from, position_source (auto | frames | observable), density_map, bin_width | dz_bin, rho_bin, on_axis_radius, "
-                          "wake_threshold, order_axis (T W L | none)."};
+                          "wake_threshold, order_axis (T W L | none). Both: window {from, to, stride}. See docs/analysis.md."};
   return run_analysis_stage(argc, argv, info, [](StageRun& run) {
     const std::string mode = run.cfg.choice("mode", {"passive", "active"});
     if (mode == "passive") run_passive(run);

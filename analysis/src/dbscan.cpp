@@ -6,6 +6,7 @@
 #include <limits>
 #include <set>
 
+#include "anisodyn/analysis/frame_window.hpp"
 #include "anisodyn/analysis/pair_search.hpp"
 #include "anisodyn/core/error.hpp"
 
@@ -137,7 +138,7 @@ DbscanCalibrationSettings parse_dbscan_settings(io::ConfigNode& cfg) {
     for (double f : s.eps_factors)
       if (!(f > 0)) cfg.fail("eps_factors", "expected positive factors");
   }
-  s.t_min = cfg.number("t_min", -std::numeric_limits<double>::infinity());
+  refuse_frame_key(cfg, "t_min");
   return s;
 }
 
@@ -221,12 +222,11 @@ void DbscanCalibration::accumulate(const Trajectory& t, int species_index) {
   if (members.size() < 2) throw InputError(t.path, "", "fewer than two particles of the selected species");
   std::vector<Vec3> r(members.size());
   for (std::size_t f = 0; f < t.frames; ++f) {
-    if (t.time[f] < s_.t_min) continue;
     for (std::size_t m = 0; m < members.size(); ++m) r[m] = t.pos(f, members[m]);
     const std::vector<Point2> points = neighbour_separation_points(r, Box(t.box_edges(f)), s_);
     CalibrationConfiguration c;
     c.replica = replicas_seen_;
-    c.frame = f;
+    c.frame = t.file_frame(f);
     c.time = t.time[f];
     c.points = points.size();
     if (s_.eps) {

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
+#include "anisodyn/analysis/frame_window.hpp"
 #include "anisodyn/analysis/order_parameters.hpp"
 #include "anisodyn/analysis/pair_search.hpp"
 #include "anisodyn/analysis/replica_statistics.hpp"
@@ -51,27 +53,6 @@ void count_pairs(const std::vector<Vec3>& a, const std::vector<Vec3>* b, const P
 }
 }  // namespace
 
-std::vector<std::size_t> FrameSelection::indices(std::size_t frames, const std::string& config_file) const {
-  if (first >= frames)
-    throw InputError(config_file, "frames.first", "frame " + std::to_string(first) + " is beyond the trajectory's " + std::to_string(frames) + " frames");
-  const std::size_t end = std::min(last, frames - 1);
-  if (end < first) throw InputError(config_file, "frames.last", "expected last ≥ first");
-  std::vector<std::size_t> out;
-  for (std::size_t f = first; f <= end; f += stride) out.push_back(f);
-  return out;
-}
-
-FrameSelection parse_frame_selection(io::ConfigNode& cfg, const std::string& key) {
-  FrameSelection s;
-  if (auto f = cfg.optional_object(key)) {
-    s.first = static_cast<std::size_t>(f->non_negative_integer("first", 0));
-    if (f->has("last")) s.last = static_cast<std::size_t>(f->non_negative_integer("last"));
-    s.stride = static_cast<std::size_t>(f->positive_integer("stride", 1));
-    if (s.last < s.first) f->fail("last", "expected last ≥ first");
-  }
-  return s;
-}
-
 PairStructureSettings parse_structure_settings(io::ConfigNode& cfg) {
   PairStructureSettings s;
   if (cfg.has("pairs")) {
@@ -95,7 +76,7 @@ PairStructureSettings parse_structure_settings(io::ConfigNode& cfg) {
   s.cylinder_radius = cfg.positive("cylinder_radius", s.cylinder_radius);
   s.slab_half_height = cfg.positive("slab_half_height", s.slab_half_height);
   s.slab_bins = static_cast<std::size_t>(cfg.positive_integer("slab_bins", 50));
-  s.frames = parse_frame_selection(cfg, "frames");
+  refuse_frame_key(cfg, "frames");
   return s;
 }
 
@@ -179,7 +160,8 @@ std::vector<Vec3> PairStructureAnalysis::frame_reference(const Trajectory& t, co
 void PairStructureAnalysis::accumulate(const Trajectory& t) {
   if (t.position.empty()) throw RuntimeFailure("PairStructureAnalysis needs positions");
   if (pair_index_.empty()) resolve_species(t);
-  const std::vector<std::size_t> frames = s_.frames.indices(t.frames, config_file_);
+  std::vector<std::size_t> frames(t.frames);  // every loaded frame: the window chose them
+  std::iota(frames.begin(), frames.end(), std::size_t{0});
   const std::vector<Vec3> ref = frame_reference(t, frames);
   frames_per_replica_ = frames.size();
   const std::size_t nb = bins_, ns = s_.slab_bins, np = pair_index_.size();

@@ -24,6 +24,7 @@
 #include "anisodyn/core/error.hpp"
 #include "scratch_dir.hpp"
 #include "synthetic_trajectory.hpp"
+#include "time_window.hpp"
 
 using namespace anisodyn;
 using namespace anisodyn::analysis;
@@ -417,21 +418,31 @@ TEST_F(MicrorheologyTest, ZeroForceIsAPassiveReferenceWithNoFrictionRatio) {
   }
 }
 
-TEST_F(MicrorheologyTest, SingleReplicaUsesTimeBlocksAndTheTracerPositionObservableWins) {
-  const double D = 0.1, v = 2.0;
-  // The frames hold a tracer that does not move; the observable (recorded more often) holds the pulled path.
-  SyntheticTrajectory t = pulled_tracer(21, 1.0, D, 0.0, 3);
-  for (auto& frame : t.position) frame[0] = Vec3(5, 5, 5);
-  const SyntheticTrajectory path = pulled_tracer(2001, 0.01, D, v, 4);
-  std::vector<std::pair<double, std::vector<double>>> rows;
-  for (std::size_t f = 0; f < path.time.size(); ++f) rows.push_back({path.time[f], {path.position[f][0].x(), path.position[f][0].y(), path.position[f][0].z()}});
-  t.observables.push_back({"tracer_position", rows});
-  const std::string p = file("obs.h5");
-  t.write(p);
+/// The pulled tracer "tracer" with free diffusion D and drift velocity v = D βF.
+ActiveMicrorheologySettings tracer_settings(double D, double v) {
   ActiveMicrorheologySettings s;
   s.species = "tracer";
   s.beta_force = v / D;
   s.D_s = D;
+  return s;
+}
+
+/// `frames` with the tracer path of `path` (its particle 0) recorded as the tracer_position observable.
+SyntheticTrajectory with_observed_path(SyntheticTrajectory frames, const SyntheticTrajectory& path) {
+  std::vector<std::pair<double, std::vector<double>>> rows;
+  for (std::size_t f = 0; f < path.time.size(); ++f) rows.push_back({path.time[f], {path.position[f][0].x(), path.position[f][0].y(), path.position[f][0].z()}});
+  frames.observables.push_back({"tracer_position", rows});
+  return frames;
+}
+
+TEST_F(MicrorheologyTest, SingleReplicaUsesTimeBlocksAndTheTracerPositionObservableWins) {
+  const double D = 0.1, v = 2.0;
+  // The frames hold a tracer that does not move; the observable (recorded more often) holds the pulled path.
+  SyntheticTrajectory t = with_observed_path(pulled_tracer(21, 1.0, D, 0.0, 3), pulled_tracer(2001, 0.01, D, v, 4));
+  for (auto& frame : t.position) frame[0] = Vec3(5, 5, 5);
+  const std::string p = file("obs.h5");
+  t.write(p);
+  ActiveMicrorheologySettings s = tracer_settings(D, v);
   ActiveMicrorheology a(s, 1);
   for_each_replica({p}, positions_and_observables(), [&](const Trajectory& tr, std::size_t) { a.accumulate(tr); });
   const ActiveResult r = a.compute();
@@ -448,6 +459,27 @@ TEST_F(MicrorheologyTest, SingleReplicaUsesTimeBlocksAndTheTracerPositionObserva
   } catch (const InputError& e) {
     EXPECT_EQ(e.json_path(), "steady_distance");
   }
+}
+
+TEST_F(MicrorheologyTest, AWindowLimitsTheTracerPathObservableToItsTimes) {
+  const double D = 0.1, v = 2.0;
+  const SyntheticTrajectory t = with_observed_path(pulled_tracer(21, 1.0, D, 0.0, 5), pulled_tracer(2001, 0.01, D, v, 6));
+  const std::string p = file("window.h5");
+  t.write(p);
+  ActiveMicrorheologySettings s = tracer_settings(D, v);
+  s.steady_distance = 0.0;  // steady from the window's first sample
+  s.density_map = false;
+  TrajectoryNeeds needs = positions_and_observables();
+  needs.window = anisodyn::testing_support::time_window(10.0, 15.0);
+  ActiveMicrorheology a(s, 1);
+  for_each_replica({p}, needs, [&](const Trajectory& tr, std::size_t) { a.accumulate(tr); });
+  const ActiveResult r = a.compute();
+  EXPECT_EQ(r.path_source, "observable tracer_position");
+  // the fitted path is the observable's rows with 10 ≤ t ≤ 15 (501 rows at 0.01 τ)
+  EXPECT_NEAR(r.replicas[0].t_start, 10.0, 1e-9);
+  EXPECT_NEAR(r.replicas[0].t_end, 15.0, 1e-9);
+  EXPECT_EQ(r.replicas[0].points, 501u);
+  EXPECT_NEAR(r.gamma_ratio.value, 1.0, 4 * r.gamma_ratio.error);
 }
 
 // ---------------------------------------------------------------------------------------------

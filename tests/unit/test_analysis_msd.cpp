@@ -16,12 +16,16 @@
 
 #include "anisodyn/analysis/msd.hpp"
 #include "anisodyn/core/error.hpp"
+#include "input_error.hpp"
 #include "scratch_dir.hpp"
 #include "synthetic_trajectory.hpp"
+#include "time_window.hpp"
 
 using namespace anisodyn;
 using namespace anisodyn::analysis;
+using anisodyn::testing_support::frames_of;
 using anisodyn::testing_support::gaussian_walks;
+using anisodyn::testing_support::input_error;
 using anisodyn::testing_support::linear_times;
 
 namespace {
@@ -30,16 +34,20 @@ class MsdTest : public anisodyn::testing_support::ScratchDirTest {
  protected:
   MsdTest() : ScratchDirTest("msd") {}
 
-  /// The analysis after every replica of `paths` (all particles).
-  static MsdAnalysis accumulated(const std::vector<std::string>& paths, const MsdSettings& s) {
-    MsdAnalysis a(s, paths.size());
+  /// The analysis after every replica of `paths` (species `species`, -1 for all) within `window`.
+  static MsdAnalysis accumulated(const std::vector<std::string>& paths, const MsdSettings& s, const FrameWindow& window = {},
+                                 int species = -1) {
+    MsdAnalysis a(s, paths.size(), "msd.json");
     TrajectoryNeeds needs;
     needs.positions = true;
     needs.orientations = true;
-    for_each_replica(paths, needs, [&](const Trajectory& t, std::size_t) { a.accumulate(t, -1); });
+    needs.window = window;
+    for_each_replica(paths, needs, [&](const Trajectory& t, std::size_t) { a.accumulate(t, species); });
     return a;
   }
-  static MsdResult run(const std::vector<std::string>& paths, const MsdSettings& s) { return accumulated(paths, s).compute(); }
+  static MsdResult run(const std::vector<std::string>& paths, const MsdSettings& s, const FrameWindow& window = {}, int species = -1) {
+    return accumulated(paths, s, window, species).compute();
+  }
 
   /// One file of Gaussian walks per replica, seeds seed, seed + 1, …
   std::vector<std::string> walk_files(const std::string& stem, std::size_t replicas, std::size_t particles,
@@ -320,4 +328,104 @@ TEST_F(MsdTest, SamplesOfAComponentAreTheCurvesBehindItsMsdAndError) {
     EXPECT_EQ(c.standard_error(), r.component(name).msd_error) << name;
   }
   EXPECT_THROW(a.samples_of("body_x"), RuntimeFailure);
+}
+
+TEST_F(MsdTest, AWindowGivesTheMsdOfTheTruncatedTrajectory) {
+  // frames 20, 22, …, 70 of a 101-frame run (t = 2 … 7, stride 2) against files holding only them
+  std::vector<std::string> full, cut;
+  for (unsigned r = 0; r < 3; ++r) {
+    const auto walk = gaussian_walks(50, linear_times(101, 0.1), Vec3(0.3, 0.5, 1.0), 60 + r);
+    full.push_back(file("full" + std::to_string(r) + ".h5"));
+    cut.push_back(file("cut" + std::to_string(r) + ".h5"));
+    walk.write(full.back());
+    frames_of(walk, 20, 26, 2).write(cut.back());
+  }
+  const FrameWindow w = anisodyn::testing_support::time_window(2.0, 7.0, 2);
+  MsdSettings s;
+  s.reference = MsdReference::Vector;
+  s.fit_window = std::make_pair(0.4, 2.0);
+  const MsdResult windowed = run(full, s, w), truncated = run(cut, s), whole = run(full, s);
+  ASSERT_EQ(windowed.lag, truncated.lag);  // lags from the window's frames, not from t = 0
+  EXPECT_NE(windowed.lag.size(), whole.lag.size());
+  for (const char* name : {"tot", "x", "z", "par", "perp"}) {
+    EXPECT_EQ(windowed.component(name).msd, truncated.component(name).msd) << name;
+    EXPECT_EQ(windowed.component(name).msd_error, truncated.component(name).msd_error) << name;
+    EXPECT_EQ(windowed.component(name).diffusion.value, truncated.component(name).diffusion.value) << name;
+    EXPECT_TRUE(std::isfinite(windowed.component(name).diffusion.value)) << name;
+  }
+  EXPECT_EQ(windowed.fit_t_max, truncated.fit_t_max);
+}
+
+namespace {
+
+const Quat kLAlongY(Eigen::AngleAxisd(-M_PI / 2, Vec3::UnitX()));  // body z (L) → lab y
+
+/// `boards` boards with L along y (random azimuth: a uniaxial nematic) and `spheres` spheres
+/// (identity orientation: every own axis perfectly "ordered", T = x the first), all diffusing with
+/// D = (0.2, 2, 0.2): fast along the boards' director only.
+testing_support::SyntheticTrajectory spheres_among_aligned_boards(std::size_t boards, std::size_t spheres, unsigned seed,
+                                                                  bool second_board_species = false) {
+  auto t = gaussian_walks(boards + spheres, linear_times(41, 0.05), Vec3(0.2, 2.0, 0.2), seed);
+  t.table = {Species{"board", Shape::cuboid(1, 3, 12), 1.0, Vec3::Ones(), Vec3::Ones()},
+             Species{"hs", Shape::sphere(0.1), 1.0, Vec3::Ones(), Vec3::Ones()}};
+  if (second_board_species) t.table.push_back(Species{"rod", Shape::cuboid(1, 1, 8), 1.0, Vec3::Ones(), Vec3::Ones()});
+  t.species.assign(boards + spheres, 1);
+  for (std::size_t i = 0; i < boards; ++i) t.species[i] = second_board_species && i % 2 ? 2 : 0;
+  t.orientation.assign(t.time.size(), std::vector<Quat>(boards + spheres, Quat::Identity()));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> azimuth(0.0, 2 * M_PI);
+  for (std::size_t i = 0; i < boards; ++i) {
+    const Quat q = kLAlongY * Quat(Eigen::AngleAxisd(azimuth(rng), Vec3::UnitZ()));
+    for (auto& frame : t.orientation) frame[i] = q;
+  }
+  return t;
+}
+
+}  // namespace
+
+TEST_F(MsdTest, SpheresTakeTheDirectorOfTheAnisotropicSpecies) {
+  std::vector<std::string> paths;
+  for (unsigned r = 0; r < 6; ++r) {
+    paths.push_back(file("mix" + std::to_string(r) + ".h5"));
+    spheres_among_aligned_boards(40, 200, 80 + r).write(paths.back());
+  }
+  MsdSettings s;
+  s.reference = MsdReference::Director;
+  const MsdResult r = run(paths, s, {}, 1);  // the spheres
+  ASSERT_EQ(r.directors.size(), 6u);
+  EXPECT_NEAR(std::abs(r.directors[0].y()), 1.0, 1e-12);  // the boards' L, not an axis of the spheres' own
+  EXPECT_NEAR(r.director_order[0], 1.0, 1e-12);
+  EXPECT_EQ(r.director_species, "board");
+  const auto& par = r.component("par").diffusion;
+  const auto& perp = r.component("perp").diffusion;
+  EXPECT_NEAR(par.value, 2.0, 4 * par.error);
+  EXPECT_NEAR(perp.value, 0.2, 4 * perp.error);
+  EXPECT_GT(par.value, 5 * perp.value);  // about the spheres' own T (x): 0.2 and 1.1
+}
+
+TEST_F(MsdTest, DirectorSpeciesIsRequiredAmongSeveralAnisotropicSpeciesAndRefusedOtherwise) {
+  const std::string two = file("two.h5"), one = file("one.h5"), none = file("none.h5");
+  spheres_among_aligned_boards(20, 20, 90, true).write(two);
+  spheres_among_aligned_boards(20, 20, 91).write(one);
+  auto spheres_only = gaussian_walks(20, linear_times(11, 0.1), Vec3(1, 1, 1), 92);
+  spheres_only.write(none);
+  MsdSettings s;
+  s.reference = MsdReference::Director;
+  EXPECT_EQ(input_error([&] { run({two}, s, {}, 1); }).json_path(), "director_species");
+  s.director_species = "rod";
+  const MsdResult r = run({two}, s, {}, 1);
+  EXPECT_EQ(r.director_species, "rod");
+  EXPECT_NEAR(std::abs(r.directors[0].y()), 1.0, 1e-12);
+  // named for the boards themselves: they are their own reference
+  const InputError own = input_error([&] { run({one}, s, {}, 0); });
+  EXPECT_EQ(own.json_path(), "director_species");
+  EXPECT_EQ(own.file(), "msd.json");
+  s.director_species = "hs";
+  EXPECT_EQ(input_error([&] { run({one}, s, {}, 1); }).json_path(), "director_species");
+  s.director_species.clear();
+  EXPECT_EQ(input_error([&] { run({none}, s, {}, 0); }).json_path(), "reference");
+  // the key without the director reference has no effect: refused
+  nlohmann::json j = {{"reference", "axes"}, {"director_species", "board"}};
+  io::ConfigNode cfg(j, "msd.json");
+  EXPECT_EQ(input_error([&] { parse_msd_settings(cfg); }).json_path(), "director_species");
 }

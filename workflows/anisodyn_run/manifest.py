@@ -10,7 +10,8 @@ Schema (docs/manifests.md):
   stages       [{name, tool, params, inputs, replicate, description}]
   report       {title, scalars: [...], plots: [...]} (report.py)
 References in params: "${grid.x}" (a grid var), "${replica}" (the replica index, replicated stages
-only), "${study}". A string that is exactly one reference takes the value's type.
+only), "${study}". A string that is exactly one reference takes the value's type; an object key
+whose value is exactly a reference to a null grid value is left out.
 """
 import json
 import re
@@ -51,7 +52,8 @@ def merge(base, over):
 
 
 def is_scalar(v):
-    return isinstance(v, (str, int, float, bool)) and v is not None
+    """A grid value: a number, string, boolean or null (null leaves out the key that refers to it)."""
+    return v is None or isinstance(v, (str, int, float, bool))
 
 
 def format_value(v):
@@ -99,7 +101,7 @@ def validate_grid(m):
             raise ManifestError(f"grid.{var}", "a non-empty list of values", values)
         for i, v in enumerate(values):
             if not is_scalar(v):
-                raise ManifestError(f"grid.{var}[{i}]", "a number, string or boolean", v)
+                raise ManifestError(f"grid.{var}[{i}]", "a number, string, boolean or null", v)
             if "/" in format_value(v) or format_value(v) in ("", ".", ".."):
                 raise ManifestError(f"grid.{var}[{i}]", "a value usable in a directory name (no '/')", v)
     zipped = m.get("zip", [])
@@ -230,9 +232,12 @@ def referenced_vars(value):
 
 
 def substitute(value, point, replica, study):
-    """value with every reference replaced; a string that is exactly one reference takes its type."""
+    """value with every reference replaced; a string that is exactly one reference takes its type.
+    A key whose value is exactly a reference to a null grid value is left out, so that a zipped
+    variable can drop a key at the grid points whose mode has no use for it (tools refuse such keys)."""
     if isinstance(value, dict):
-        return {k: substitute(v, point, replica, study) for k, v in value.items()}
+        out = {k: substitute(v, point, replica, study) for k, v in value.items()}
+        return {k: v for k, v in out.items() if not (v is None and isinstance(value[k], str) and REFERENCE.fullmatch(value[k]))}
     if isinstance(value, list):
         return [substitute(v, point, replica, study) for v in value]
     if not isinstance(value, str):

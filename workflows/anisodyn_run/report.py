@@ -5,6 +5,7 @@ draws the configured plots with the theory overlays of spec 70, and lists every 
 Written into report.partial/ and renamed, so a report is either complete or absent."""
 import csv
 import fnmatch
+import json
 import math
 import os
 import shutil
@@ -45,6 +46,20 @@ def read_table(path, table):
         if table not in f:
             raise KeyError(f"{path} has no table '{table}' (tables: {', '.join(k for k in f if k not in ('scalars',) and hasattr(f[k], 'keys'))})")
         return {k: f[table][k][...] for k in f[table]}, {k: _attr(f[table][k], "units") for k in f[table]}
+
+
+def window_text(path):
+    """The time window a stage analysed (its output's root attribute `window`), or None."""
+    import h5py
+    with h5py.File(path, "r") as f:
+        if "window" not in f.attrs:
+            return None
+        w = json.loads(_attr(f, "window"))
+    span = f"t = {format_value(w['from']) if w['from'] is not None else 'start'} … {format_value(w['to']) if w['to'] is not None else 'end'}"
+    frames = f"{w['frames']} frames" + (f", stride {w['stride']}" if w["stride"] > 1 else "")
+    if w["frames"]:
+        frames += f": {w['first_frame']}–{w['last_frame']} at t = {w['first_time']:.5g} … {w['last_time']:.5g}"
+    return f"Time window {span} ({frames})."
 
 
 def _attr(obj, name):
@@ -204,7 +219,11 @@ class Report:
                     continue
                 if not scalars:
                     continue
-                lines += [f"### {st['name']} — {point_text(job.point)}", "", "| scalar | value ± SE | units | definition |", "|---|---|---|---|"]
+                lines += [f"### {st['name']} — {point_text(job.point)}", ""]
+                window = window_text(self.path(job))
+                if window:
+                    lines += [window, ""]
+                lines += ["| scalar | value ± SE | units | definition |", "|---|---|---|---|"]
                 for n, (v, e, u, d) in scalars.items():
                     lines.append(f"| {n} | {fmt(v, e)} | {u} | {d.replace('|', '/')} |")
                 lines.append("")

@@ -125,6 +125,17 @@ void field_initially_has_no_effect(io::ConfigNode& cfg) {
 
 }  // namespace
 
+bool FrameRules::log_cycle_due(std::int64_t since_switch) const {
+  if (!(log_cycles_per_decade > 0.0) || since_switch < 0) return false;
+  const std::int64_t m = log_cycles_restart > 0 ? since_switch % log_cycles_restart : since_switch;
+  if (m == 0) return true;
+  // m is on the grid if round(10^(k/n)) = m for the k nearest n·log10(m)
+  const double x = log_cycles_per_decade * std::log10(static_cast<double>(m));
+  for (auto k = static_cast<std::int64_t>(std::floor(x)) - 1; k <= static_cast<std::int64_t>(std::ceil(x)) + 1; ++k)
+    if (k >= 0 && std::llround(std::pow(10.0, static_cast<double>(k) / log_cycles_per_decade)) == m) return true;
+  return false;
+}
+
 DmcProtocol parse_dmc_protocol(io::ConfigNode& cfg) {
   DmcProtocol p;
   p.seed = static_cast<std::uint64_t>(cfg.non_negative_integer("seed", 1));
@@ -227,6 +238,10 @@ DmcProtocol parse_dmc_protocol(io::ConfigNode& cfg) {
     if (auto a = f->optional_object("after_switch")) {
       p.frames.after_switch_every = a->positive_integer("every_cycles");
       p.frames.after_switch_for = a->positive_integer("for_cycles");
+    }
+    if (auto l = f->optional_object("log_cycles")) {
+      p.frames.log_cycles_per_decade = l->positive("per_decade");
+      if (l->has("restart_every")) p.frames.log_cycles_restart = l->positive_integer("restart_every");
     }
   }
   p.observe_every = cfg.positive_integer("observe_every", 1);

@@ -372,6 +372,7 @@ bool DmcRunner::frame_due() {
   bool due = f.every_cycles > 0 && c % f.every_cycles == 0;
   const std::int64_t since = c - cursor_.last_switch_cycle;
   if (f.after_switch_every > 0 && since <= f.after_switch_for && since % f.after_switch_every == 0) due = true;
+  if (f.log_cycle_due(since)) due = true;
   if (f.every_time > 0.0 && t >= static_cast<double>(cursor_.next_time_frame) * f.every_time) {
     due = true;
     while (static_cast<double>(cursor_.next_time_frame) * f.every_time <= t) ++cursor_.next_time_frame;

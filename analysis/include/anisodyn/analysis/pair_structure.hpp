@@ -25,16 +25,6 @@ namespace anisodyn::analysis {
 
 enum class PairReference { None, Field, Director };
 
-/// Frames [first, last] with a stride (last = npos: the final frame).
-struct FrameSelection {
-  std::size_t first = 0, last = static_cast<std::size_t>(-1), stride = 1;
-  /// The selected frame indices of a trajectory with `frames` frames (InputError if none).
-  std::vector<std::size_t> indices(std::size_t frames, const std::string& config_file) const;
-};
-
-/// Reads `frames: {first, last, stride}` (all optional).
-FrameSelection parse_frame_selection(io::ConfigNode& cfg, const std::string& key);
-
 struct PairStructureSettings {
   std::vector<std::pair<std::string, std::string>> pairs;  // empty = each species with itself
   double dr = 0.05;
@@ -46,13 +36,13 @@ struct PairStructureSettings {
   double cylinder_radius = 0.5;          // R_∥ (spec 50 §4.2 Decision for cubes: 0.5σ)
   double slab_half_height = 0.5;         // h_⊥
   std::size_t slab_bins = 50;            // Δs = L / slab_bins
-  FrameSelection frames;
   std::size_t single_replica_blocks = 10;
   double director_threshold = 0.40;      // a director needs mean U above this (spec 50 §3.1)
 };
 
 /// Reads the keys of anisodyn-structure (pairs, dr, r_max, reference, direction, axis,
-/// director_species, cylinder_radius, slab_half_height, slab_bins, frames).
+/// director_species, cylinder_radius, slab_half_height, slab_bins). Frames are chosen by the
+/// stage's time window (frame_window.hpp); the former `frames` key is refused with that advice.
 PairStructureSettings parse_structure_settings(io::ConfigNode& cfg);
 
 struct PairCurves {

@@ -31,6 +31,14 @@ struct FrameRules {
   double log_per_decade = 0.0;
   std::int64_t after_switch_every = 0;  // denser frames for a while after each field switch
   std::int64_t after_switch_for = 0;
+  double log_cycles_per_decade = 0.0;   // logarithmic in cycles after each switch (and the start) …
+  std::int64_t log_cycles_restart = 0;  // … restarted every this many cycles (0: once per switch)
+
+  /// Whether the logarithmic cycle rule writes a frame `since_switch` cycles after the last switch:
+  /// m = since_switch (mod restart) is 0 or one of round(10^(k/per_decade)), k = 0, 1, … (1, 2, 3,
+  /// 4, 6, 7, 10, … cycles at 5 per decade), so that every restart block holds lags from one cycle
+  /// up, wherever a time window later cuts the run.
+  bool log_cycle_due(std::int64_t since_switch) const;
 };
 
 struct TracerSettings {
