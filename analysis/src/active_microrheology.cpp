@@ -89,10 +89,12 @@ double DensityMapGrid::ring_volume(std::size_t m) const {
 ActiveMicrorheologySettings parse_active_microrheology_settings(io::ConfigNode& cfg) {
   ActiveMicrorheologySettings s;
   s.species = cfg.string("species");
-  s.bath_species = cfg.string("bath_species", "");
   const int forces = static_cast<int>(cfg.has("beta_force")) + static_cast<int>(cfg.has("force")) + static_cast<int>(cfg.has("pe"));
   if (forces > 1) cfg.fail("beta_force", "expected one of 'beta_force', 'force' (with kT) and 'pe', not several");
+  cfg.reject_unless(cfg.has("force"), "kT", "without 'force' (it converts force into beta_force = force / kT)");
   const double kT = cfg.positive("kT", 1.0);
+  for (const char* key : {"radius", "tracer_diameter"})
+    cfg.reject_unless(!cfg.has("beta_force") && !cfg.has("force"), key, "with 'beta_force' or 'force' (the radius converts pe into beta_force)");
   if (cfg.has("beta_force")) s.beta_force = cfg.non_negative("beta_force");
   if (cfg.has("force")) s.beta_force = cfg.non_negative("force") / kT;
   if (cfg.has("pe")) s.peclet = cfg.non_negative("pe");
@@ -114,6 +116,10 @@ ActiveMicrorheologySettings parse_active_microrheology_settings(io::ConfigNode& 
   const std::string source = cfg.choice("position_source", {"auto", "frames", "observable"}, "auto");
   s.source = source == "frames" ? TracerPathSource::Frames : source == "observable" ? TracerPathSource::Observable : TracerPathSource::Auto;
   s.density_map = cfg.boolean("density_map", true);
+  for (const char* key : {"bath_species", "bin_width", "dz_bin", "rho_bin", "on_axis_radius", "wake_threshold", "order_axis"})
+    cfg.reject_unless(s.density_map, key, "with density_map false (it shapes the density map)");
+  cfg.reject_unless(!(cfg.has("dz_bin") && cfg.has("rho_bin")), "bin_width", "with both dz_bin and rho_bin given (it is their default)");
+  s.bath_species = cfg.string("bath_species", "");
   const double bin = cfg.positive("bin_width", 0.25);
   s.dz_bin = cfg.positive("dz_bin", bin);
   s.rho_bin = cfg.positive("rho_bin", bin);

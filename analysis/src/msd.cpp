@@ -28,6 +28,9 @@ MsdSettings parse_msd_settings(io::ConfigNode& cfg) {
   const std::string ref = cfg.choice("reference", {"axes", "director", "field", "vector", "particle_axis"}, "axes");
   if (ref == "director") s.reference = MsdReference::Director;
   if (ref == "particle_axis") s.reference = MsdReference::ParticleAxis;
+  cfg.reject_unless(ref == "field" || ref == "vector", "direction", "unless \"reference\" is \"field\" or \"vector\" (it is their direction)");
+  cfg.reject_unless(ref == "director" || ref == "particle_axis", "axis",
+                    "unless \"reference\" is \"director\" or \"particle_axis\" (it picks the body axis they use)");
   if (ref == "field" || ref == "vector") {
     s.reference = MsdReference::Vector;
     const Vec3 d = cfg.vec3("direction");
@@ -35,11 +38,9 @@ MsdSettings parse_msd_settings(io::ConfigNode& cfg) {
     s.direction = d.normalized();
   }
   s.axis = body_axis_index(cfg, "axis");
-  if (cfg.has("director_species")) {
-    if (s.reference != MsdReference::Director)
-      cfg.fail("director_species", "no director_species unless \"reference\" is \"director\" (it names the species whose director spheres use)");
-    s.director_species = cfg.string("director_species");
-  }
+  cfg.reject_unless(s.reference == MsdReference::Director, "director_species",
+                    "unless \"reference\" is \"director\" (it names the species whose director spheres use)");
+  s.director_species = cfg.string("director_species", "");
   if (s.reference == MsdReference::ParticleAxis && s.axis < 0) s.axis = 2;
   s.lags_per_decade = cfg.non_negative("lags_per_decade", s.lags_per_decade);
   s.max_origins = static_cast<std::size_t>(cfg.non_negative_integer("max_origins", 0));

@@ -68,6 +68,11 @@ PairStructureSettings parse_structure_settings(io::ConfigNode& cfg) {
   if (cfg.has("r_max")) s.r_max = cfg.positive("r_max");
   const std::string ref = cfg.choice("reference", {"field", "director", "none"}, "field");
   s.reference = ref == "director" ? PairReference::Director : ref == "none" ? PairReference::None : PairReference::Field;
+  cfg.reject_unless(ref == "field", "direction", "unless \"reference\" is \"field\" (it is the field's direction)");
+  for (const char* key : {"axis", "director_species"})
+    cfg.reject_unless(ref == "director", key, "unless \"reference\" is \"director\" (it chooses the director)");
+  for (const char* key : {"cylinder_radius", "slab_half_height"})
+    cfg.reject_unless(ref != "none", key, "with \"reference\" \"none\" (it shapes g_par and g_perp)");
   const Vec3 d = cfg.vec3("direction", Vec3::UnitZ());
   if (!(d.norm() > 0)) cfg.fail("direction", "expected a non-zero direction vector");
   s.direction = d.normalized();

@@ -2,7 +2,7 @@
 """Keys that have no effect in the chosen mode are refused, tool by tool.
 
 Walks every documented key whose effect depends on a mode (or on the input) and sets it where it
-does not apply, on a configuration that otherwise runs: each case must exit with code 2, name the
+does not apply (anisodyn-config, -mc, -dmc, -hydro, the analysis stages and anisodyn-run), on a configuration that otherwise runs: each case must exit with code 2, name the
 configuration file and the key's JSON path, say that the key has no effect, and write nothing.
 Each walked key must appear in its tool's documentation page (so the table follows the docs), and
 every base configuration must run as it is (so a refusal is due to the key alone).
@@ -20,7 +20,8 @@ shutil.rmtree(tmp, ignore_errors=True)
 os.makedirs(tmp)
 runner = [sys.executable, os.path.join(source, "workflows", "anisodyn-run"), "--bin", bin_dir]
 DOCS = {tool: open(os.path.join(source, "docs", page)).read() for tool, page in
-        {"config": "config.md", "mc": "mc.md", "dmc": "dmc.md", "run": "manifests.md"}.items()}
+        {"config": "config.md", "mc": "mc.md", "dmc": "dmc.md", "run": "manifests.md", "hydro": "hydro.md",
+         **{stage: "analysis.md" for stage in ("msd", "vanhove", "structure", "order", "response", "microrheology")}}.items()}
 
 
 def write_json(name, value):
@@ -121,6 +122,60 @@ CASES = [
     ("repeat without segments", "dmc", DMC, MIXED, {"schedule": {"repeat": 2}}, "schedule.repeat"),
 ]
 
+# A pulled-tracer DMC trajectory of boards, balls and the probe, with frames, for the analysis stages.
+TRAJ = os.path.join(tmp, "traj.h5")
+r = tool("dmc", "--config", write_json("traj.json", dict(DMC, cycles=200, frames={"every_cycles": 10})), "--input", MIXED, "--output", TRAJ)
+assert r.returncode == 0, r.stderr
+MSD = {"species": "board"}
+VANHOVE = {"species": "ball", "times": [0.001]}
+STRUCTURE = {"pairs": [["board", "board"]], "r_max": 4.0}
+ORDER = {"species": "board"}
+RESPONSE = {"species": "board", "switch_on": 0.0005, "switch_off": 0.001}
+ACTIVE = {"mode": "active", "species": "probe", "steady_from": 0.0}
+SPHERE = {"name": "s", "shape": {"type": "sphere", "diameter": 1}}
+HYDRO = {"species": [dict(SPHERE, bead_radii=[0.2, 0.15, 0.1])], "symmetry": True}
+CASES += [
+    # analysis stages
+    ("msd direction without a field reference", "msd", MSD, TRAJ, {"direction": [0, 0, 1]}, "direction"),
+    ("msd axis with the box axes", "msd", MSD, TRAJ, {"axis": "L"}, "axis"),
+    ("msd director_species with the box axes", "msd", MSD, TRAJ, {"director_species": "board"}, "director_species"),
+    ("van Hove direction without par/perp", "vanhove", VANHOVE, TRAJ, {"direction": [1, 0, 0]}, "direction"),
+    ("angular bin width without angular axes", "vanhove", VANHOVE, TRAJ, {"angular_bin_width": 0.05}, "angular_bin_width"),
+    ("angular dimension without angular axes", "vanhove", VANHOVE, TRAJ, {"angular_dimension": 3}, "angular_dimension"),
+    ("structure direction with the director", "structure", STRUCTURE, TRAJ, {"reference": "director", "direction": [1, 0, 0]}, "direction"),
+    ("structure axis with the field", "structure", STRUCTURE, TRAJ, {"axis": "L"}, "axis"),
+    ("structure director_species with the field", "structure", STRUCTURE, TRAJ, {"director_species": "board"}, "director_species"),
+    ("cylinder radius without a reference", "structure", STRUCTURE, TRAJ, {"reference": "none", "cylinder_radius": 1.0}, "cylinder_radius"),
+    ("slab half height without a reference", "structure", STRUCTURE, TRAJ, {"reference": "none", "slab_half_height": 1.0}, "slab_half_height"),
+    ("rod axis without S_rod", "order", ORDER, TRAJ, {"observables": ["U"], "rod_axis": "T"}, "rod_axis"),
+    ("field direction without S_cube", "order", ORDER, TRAJ, {"observables": ["U", "B2"], "field_direction": [1, 0, 0]}, "field_direction"),
+    ("chain threshold without S_cube", "order", ORDER, TRAJ, {"observables": ["U"], "chain_threshold": {"gamma": 13}}, "chain_threshold"),
+    ("response main axis with a U signal", "response", RESPONSE, TRAJ, {"signal": "U_L", "main_axis": "L"}, "main_axis"),
+    ("response field direction with B2", "response", RESPONSE, TRAJ, {"field_direction": [1, 0, 0]}, "field_direction"),
+    ("kT without a force", "microrheology", ACTIVE, TRAJ, {"pe": 1.0, "kT": 2.0}, "kT"),
+    ("radius with beta_force", "microrheology", ACTIVE, TRAJ, {"beta_force": 2.0, "radius": 0.5}, "radius"),
+    ("tracer_diameter with force", "microrheology", ACTIVE, TRAJ, {"force": 2.0, "tracer_diameter": 1.0}, "tracer_diameter"),
+    ("bin width without a density map", "microrheology", ACTIVE, TRAJ, {"density_map": False, "bin_width": 0.5}, "bin_width"),
+    ("on-axis radius without a density map", "microrheology", ACTIVE, TRAJ, {"density_map": False, "on_axis_radius": 1.0},
+     "on_axis_radius"),
+    ("wake threshold without a density map", "microrheology", ACTIVE, TRAJ, {"density_map": False, "wake_threshold": 0.8},
+     "wake_threshold"),
+    ("order axis without a density map", "microrheology", ACTIVE, TRAJ, {"density_map": False, "order_axis": "T"}, "order_axis"),
+    ("bath species without a density map", "microrheology", ACTIVE, TRAJ, {"density_map": False, "bath_species": "ball"}, "bath_species"),
+    ("bin width with dz_bin and rho_bin", "microrheology", ACTIVE, TRAJ, {"dz_bin": 0.5, "rho_bin": 0.5, "bin_width": 0.25}, "bin_width"),
+    ("steady_distance at Pe = 0", "microrheology", ACTIVE, TRAJ, {"steady_from": None, "pe": 0.0, "steady_distance": 1.0},
+     "steady_distance"),
+    # anisodyn-hydro
+    ("shells with bead radii", "hydro", HYDRO, None, {"species[0].shells": {"count": 3}}, "species[0].shells"),
+    ("default shells no species uses", "hydro", HYDRO, None, {"shells": {"count": 3}}, "shells"),
+    ("default construction no species uses", "hydro", HYDRO, None,
+     {"construction": "cell_centres", "species[0].construction": "surface_grid"}, "construction"),
+    ("default bead radii no species uses", "hydro", HYDRO, None,
+     {"bead_radii": [0.2, 0.15, 0.1], "species": [dict(SPHERE, shells={"count": 3, "max_beads": 200})]}, "bead_radii"),
+]
+BASES = (("msd", MSD, TRAJ), ("vanhove", VANHOVE, TRAJ), ("structure", STRUCTURE, TRAJ), ("order", ORDER, TRAJ),
+         ("response", RESPONSE, TRAJ), ("microrheology", ACTIVE, TRAJ), ("hydro", HYDRO, None))
+
 RUN_GOOD = {"study": "keys", "grid": {"eta": [0.02, 0.03]}, "replicas": 1,
             "stages": [{"name": "config", "tool": "config", "params": dict(CONFIG, box={"packing_fraction": "${grid.eta}"})},
                        {"name": "msd", "tool": "msd", "inputs": ["config"], "params": {}}],
@@ -188,7 +243,7 @@ def check(label, result, config_path, json_path, output):
 
 # The base configurations run as they are.
 for name, base, input_path in (("config", CONFIG, None), ("mc", MC, MIXED), ("dmc", DMC, MIXED),
-                               ("dmc", DMC_BALLS, BALLS)):
+                               ("dmc", DMC_BALLS, BALLS)) + BASES:
     path = write_json(f"base-{name}.json", base)
     args = ["--config", path, "--output", os.path.join(tmp, f"base-{name}-{len(base)}.h5")] + (["--input", input_path] if input_path else [])
     r = tool(name, *args)

@@ -116,6 +116,8 @@ HydroConfig parse_hydro_config(io::ConfigNode& cfg) {
     default_radii = parse_bead_radii(cfg);
   }
 
+  // Top-level keys are defaults: each must reach at least one species, or it has no effect.
+  bool default_construction_used = false, default_series_used = false;
   std::set<std::string> seen;
   auto nodes = cfg.objects("species");
   if (nodes.empty()) cfg.fail("species", "expected at least one species");
@@ -125,10 +127,13 @@ HydroConfig parse_hydro_config(io::ConfigNode& cfg) {
     if (job.name.empty() || !seen.insert(job.name).second) n.fail("name", "expected a unique, non-empty species name");
     job.shape_json = n.raw().at("shape");
     job.shape = parse_hydro_shape(n.object("shape"));
+    default_construction_used |= !n.has("construction");
     const ConstructionRegistration& construction = parse_construction(n, default_construction);
     job.construction_name = construction.name;
     job.construction = construction.beads;
     check_construction_covers(n, job);
+    if (n.has("bead_radii") && n.has("shells")) n.reject_unless(false, "shells", "with bead_radii (the radii are given: either shells or bead_radii, not both)");
+    default_series_used |= !n.has("bead_radii") && !n.has("shells");
     if (n.has("bead_radii")) {
       job.bead_radii = parse_bead_radii(n);
     } else if (default_radii && !n.has("shells")) {
@@ -148,6 +153,10 @@ HydroConfig parse_hydro_config(io::ConfigNode& cfg) {
     }
     out.species.push_back(std::move(job));
   }
+  const std::string own = "with every species setting its own ";
+  cfg.reject_unless(default_construction_used, "construction", "(a default) " + own + "construction");
+  cfg.reject_unless(default_series_used, "shells", "(a default) " + own + "bead_radii or shells");
+  cfg.reject_unless(default_series_used, "bead_radii", "(a default) " + own + "bead_radii or shells");
   return out;
 }
 
