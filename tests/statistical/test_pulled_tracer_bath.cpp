@@ -41,6 +41,14 @@ class PulledTracerBath : public ScratchDirTest {
   }
 };
 
+/// The friction of the campaign's replicas, printed under `label`.
+auto friction_of(const std::vector<std::string>& paths, double pe, double tracer_diameter, const char* label) {
+  const auto result = analyse_tracer(paths, pe, tracer_diameter);
+  std::printf("%s: gamma_eff/gamma_0 = %.4f ± %.4f (jackknife), <v> = %.4f ± %.4f, per-replica sd %.4f\n", label,
+              result.gamma_ratio.value, result.gamma_ratio.error, result.velocity.value, result.velocity.error, result.velocity_scatter);
+  return result;
+}
+
 analysis::Estimate tracer_summary_mean(const std::vector<nlohmann::json>& summaries, const char* key) {
   std::vector<double> v;
   for (const auto& s : summaries) v.push_back(s.at("tracer").at(key).get<double>());
@@ -57,9 +65,7 @@ TEST_F(PulledTracerBath, IdealPointBathLeavesTheFrictionFreeAndPassesAsItsGeomet
   r.tracer_dt = 0.01;
   r.cycles = 60000;
   const Campaign c = run(bath, r, 24, "points");
-  const auto result = analyse_tracer(c.paths, r.pe, bath.tracer_diameter);
-  std::printf("ideal point bath: gamma_eff/gamma_0 = %.4f ± %.4f (jackknife), <v> = %.4f ± %.4f, per-replica sd %.4f\n",
-              result.gamma_ratio.value, result.gamma_ratio.error, result.velocity.value, result.velocity.error, result.velocity_scatter);
+  const auto result = friction_of(c.paths, r.pe, bath.tracer_diameter, "ideal point bath");
   EXPECT_LT(result.gamma_ratio.error, 0.05);
   EXPECT_NEAR(result.gamma_ratio.value, 1.0, 3.0 * result.gamma_ratio.error);
 
@@ -120,9 +126,7 @@ TEST_F(PulledTracerBath, HardSphereBathAtPackingFractionPointThreeRaisesTheFrict
   r.tracer_dt = 0.005;
   r.cycles = 50000;
   const Campaign c = run(bath, r, 16, "hs");
-  const auto result = analyse_tracer(c.paths, r.pe, bath.tracer_diameter);
-  std::printf("hard-sphere bath eta = 0.30: gamma_eff/gamma_0 = %.4f ± %.4f (jackknife), <v> = %.4f ± %.4f, per-replica sd %.4f\n",
-              result.gamma_ratio.value, result.gamma_ratio.error, result.velocity.value, result.velocity.error, result.velocity_scatter);
+  const auto result = friction_of(c.paths, r.pe, bath.tracer_diameter, "hard-sphere bath eta = 0.30");
   EXPECT_LT(result.gamma_ratio.error, 0.2);
   EXPECT_GT(result.gamma_ratio.value - 1.0, 4.0 * result.gamma_ratio.error);
 }
