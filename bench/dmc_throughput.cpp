@@ -1,14 +1,22 @@
-// Whole-run DMC throughput: single-thread trial moves per second on the three reference systems
-// of issue 3 (time steps fixed; balancing and output are not part of the timed loop):
+// Whole-run DMC throughput: single-thread trial moves per second (time steps fixed; balancing and
+// output are not part of the timed loop). The three reference systems of issue 3:
 //   (a) 1000 boards 12×3.46×1 at φ = 0.20 plus one pulled tracer (d = 1, Pe = 1, δt_s = 10⁻²);
 //   (b) 2000 boards 12×8×1 at η = 0.34 (aligned start, N_U⁻), δt = 10⁻²;
-//   (c) 1500 dipolar cubes at η = 0.02, field on (γ = 13, Ewald at relative accuracy 10⁻⁵), δt = 10⁻³.
-// The board D tensors of (a) are the bead-model values of manifests/data/boards_L12_bead_model.species.json
-// (anisodyn-hydro); (b) and (c) use the published values (spec 10 §8).
+//   (c) 1500 dipolar cubes at η = 0.02, field on (γ = 13, Ewald at relative accuracy 10⁻⁵), δt = 10⁻³;
+// the hard-sphere validation system (manifests/validation/dmc_hs_eta0.30.json):
+//   (d) 1000 hard spheres d = 1 at η = 0.30, δt = 10⁻⁴ (and 10⁻²);
+// and the board + small-sphere mixture of study A3 (spec 60 §A3), spheres as reference:
+//   (e) 2000 boards 12×1×1 + 200 spheres d = 0.1 in the pure-board box of η = 0.15 (isotropic,
+//       54.29 T) and of η = 0.34 (aligned start, N_U⁺, 41.33 T), δt = 10⁻² for both species
+//       (the balanced board step is 1.04×10⁻² at η = 0.15: docs/validation.md).
+// The board D tensors of (a) and (e) are the bead-model values of manifests/data/boards_L12_bead_model.species.json
+// (anisodyn-hydro); (b) and (c) use the published values (spec 10 §8); spheres use Stokes–Einstein.
 #include <benchmark/benchmark.h>
 
 #include "anisodyn/dmc/dmc_engine.hpp"
+#include "anisodyn/system/order.hpp"
 #include "support/prepared_state.hpp"
+#include "support/timing.hpp"
 
 using namespace anisodyn;
 
@@ -72,9 +80,65 @@ void BM_DmcDipolarCubes1500(benchmark::State& bs) {
   });
 }
 
+// 1000 hard spheres at η = 0.30: the system and time steps of the DMC hard-sphere validation.
+void BM_DmcHardSpheres1000(benchmark::State& bs) {
+  static const State prepared = bench::cached_melted_lattice(
+      "spheres_N1000_eta0.30", Species{"hs", Shape::sphere(1.0), 1.0, Vec3::Constant(1.0 / (3.0 * M_PI)), Vec3::Zero()}, 1000, 0.30, 8000);
+  run_cycles(bs, prepared, {static_cast<double>(bs.range(0)) * 1e-6}, [](DmcEngine&) {});
+}
+
+// Study A3's mixture. W* = 1 board D from boards_L12_bead_model.species.json (entry board_W1).
+const Species kBoardW1{"board", Shape::cuboid(1.0, 1.0, 12.0), 1.0, Vec3(0.0203862, 0.0203862, 0.0285304),
+                       Vec3(9.45332e-4, 9.45332e-4, 1.63248e-2)};
+const Species kSphere01{"hs", Shape::sphere(0.1), 1.0, Vec3::Constant(1.0 / (3.0 * M_PI * 0.1)), Vec3::Zero()};
+
+State a3_mixture(double eta, std::int64_t melt_cycles) {
+  const std::string tag = eta < 0.2 ? "0.15" : "0.34";
+  State s = bench::cached_mixture("boards_12x1x1_N2000_spheres_d0.1_N200_eta" + tag, "cuboids_12x1x1_N2000_eta" + tag,
+                                  kBoardW1, 2000, eta, melt_cycles, kSphere01, 200, 2000);
+  s.species[0].D_trans = kBoardW1.D_trans;  // whatever the cache holds, time with these tensors
+  s.species[0].D_rot = kBoardW1.D_rot;
+  s.species[1].D_trans = kSphere01.D_trans;
+  return s;
+}
+
+void report_board_order(benchmark::State& bs, const State& s) {
+  bs.counters["U_L"] = body_axis_order(s, 0)[2].order;
+}
+
+// The same boards without the spheres: what the mixture costs on top of its boards.
+void BM_DmcBoardsA3Isotropic(benchmark::State& bs) {
+  static const State prepared = [] {
+    State s = a3_mixture(0.15, 30000);
+    while (s.particles.size() > 2000) s.particles.pop_back();  // the spheres were appended last
+    s.species.pop_back();
+    return s;
+  }();
+  run_cycles(bs, prepared, {1e-2}, [](DmcEngine&) {});
+  report_board_order(bs, prepared);
+}
+
+void BM_DmcMixtureA3Isotropic(benchmark::State& bs) {
+  static const State prepared = a3_mixture(0.15, 30000);
+  run_cycles(bs, prepared, {1e-2, 1e-2}, [](DmcEngine&) {});
+  report_board_order(bs, prepared);
+}
+
+void BM_DmcMixtureA3Nematic(benchmark::State& bs) {
+  static const State prepared = a3_mixture(0.34, 5000);
+  run_cycles(bs, prepared, {1e-2, 1e-2}, [](DmcEngine&) {});
+  report_board_order(bs, prepared);
+}
+
+void three_seconds(benchmark::internal::Benchmark* b) { bench::min_time_or_fixed_iterations(b, 3.0); }
+
 }  // namespace
 
-BENCHMARK(BM_DmcBoards1000WithTracer)->Unit(benchmark::kMillisecond)->MinTime(3.0);
-BENCHMARK(BM_DmcBoards2000Nematic)->Unit(benchmark::kMillisecond)->MinTime(3.0);
-BENCHMARK(BM_DmcDipolarCubes1500)->Unit(benchmark::kMillisecond)->MinTime(3.0);
+BENCHMARK(BM_DmcBoards1000WithTracer)->Unit(benchmark::kMillisecond)->Apply(three_seconds);
+BENCHMARK(BM_DmcBoards2000Nematic)->Unit(benchmark::kMillisecond)->Apply(three_seconds);
+BENCHMARK(BM_DmcDipolarCubes1500)->Unit(benchmark::kMillisecond)->Apply(three_seconds);
+BENCHMARK(BM_DmcHardSpheres1000)->Arg(100)->Arg(10000)->Unit(benchmark::kMillisecond)->Apply(three_seconds);  // δt in 10⁻⁶ τ
+BENCHMARK(BM_DmcBoardsA3Isotropic)->Unit(benchmark::kMillisecond)->Apply(three_seconds);
+BENCHMARK(BM_DmcMixtureA3Isotropic)->Unit(benchmark::kMillisecond)->Apply(three_seconds);
+BENCHMARK(BM_DmcMixtureA3Nematic)->Unit(benchmark::kMillisecond)->Apply(three_seconds);
 BENCHMARK_MAIN();

@@ -28,26 +28,58 @@ inline State lattice_at(const Species& sp, std::size_t n, double eta) {
   return s;
 }
 
-inline State cached_melted_lattice(const std::string& name, const Species& sp, std::size_t n, double eta, std::int64_t melt_cycles) {
+/// The state cached as `name`, or make() written to the cache first.
+template <class Make>
+State cached_state(const std::string& name, Make&& make) {
   const char* env = std::getenv("ANISODYN_BENCH_CACHE");
   const std::string dir = env ? env : "bench-cache";
   std::filesystem::create_directories(dir);
   const std::string path = dir + "/" + name + ".h5";
   if (std::filesystem::exists(path)) return io::H5mdReader(path).read_frame(-1);
-  State s = lattice_at(sp, n, eta);
-  McProtocol proto;
-  McPhase melt;
-  melt.type = McPhase::Type::Nvt;
-  melt.cycles = melt_cycles;
-  melt.tune = true;
-  proto.phases = {melt};
-  McRunner runner(s, proto, false);
-  runner.run(0, [] {});
-  std::fprintf(stderr, "prepared %s: %s\n", name.c_str(), runner.summary()["phases"][0].dump().c_str());
+  State s = make();
   io::H5mdWriter w(path, {"anisodyn", "", "bench", nlohmann::json::object(), nlohmann::json::object(), s.species});
   w.append_frame(s);
   w.commit();
   return s;
+}
+
+/// NVT MC with move tuning on `s`, in place; logs the phase summary under `name`.
+inline void melt(State& s, const std::string& name, std::int64_t cycles) {
+  McProtocol proto;
+  McPhase phase;
+  phase.type = McPhase::Type::Nvt;
+  phase.cycles = cycles;
+  phase.tune = true;
+  proto.phases = {phase};
+  McRunner runner(s, proto, false);
+  runner.run(0, [] {});
+  std::fprintf(stderr, "prepared %s: %s\n", name.c_str(), runner.summary()["phases"][0].dump().c_str());
+}
+
+inline State cached_melted_lattice(const std::string& name, const Species& sp, std::size_t n, double eta, std::int64_t melt_cycles) {
+  return cached_state(name, [&] {
+    State s = lattice_at(sp, n, eta);
+    melt(s, name, melt_cycles);
+    return s;
+  });
+}
+
+/// A melted lattice of one species (box set by its packing fraction alone, as in spec 60 §A3)
+/// with `n_small` particles of `small` inserted at random and re-equilibrated by NVT MC.
+inline State cached_mixture(const std::string& name, const std::string& host_name, const Species& host, std::size_t n_host,
+                            double eta, std::int64_t melt_cycles, const Species& small, std::size_t n_small,
+                            std::int64_t mix_cycles) {
+  return cached_state(name, [&] {
+    State s = cached_melted_lattice(host_name, host, n_host, eta, melt_cycles);
+    s.species.push_back(small);
+    PlacementRequest req;
+    req.counts = {0, n_small};
+    req.rules = {OrientationRule{}, OrientationRule{}};
+    Rng rng(2, 2);
+    insert_randomly(s, req, rng);
+    melt(s, name, mix_cycles);
+    return s;
+  });
 }
 
 }  // namespace anisodyn::bench
