@@ -293,6 +293,11 @@ TEST(HydroConfig, ExtrapolationKeyAtTopLevelAndPerSpecies) {
   nlohmann::json bad{{"extrapolation", "cubic"}, {"species", {{{"name", "a"}, {"shape", sphere}, {"bead_radii", radii}}}}};
   io::ConfigNode cfg(bad, "h.json");
   EXPECT_THROW(parse_hydro_config(cfg), InputError);
+  // A top-level default that every species overrides has no effect: refused.
+  nlohmann::json unused{{"extrapolation", "quadratic"},
+                        {"species", {{{"name", "a"}, {"shape", sphere}, {"bead_radii", radii}, {"extrapolation", "linear"}}}}};
+  io::ConfigNode cfg2(unused, "h.json");
+  EXPECT_THROW(parse_hydro_config(cfg2), InputError);
 }
 
 TEST(ShellSeriesChoice, RefusesTooFewBeadsAndSnapsCuboidRadii) {

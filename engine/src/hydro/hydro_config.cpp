@@ -127,6 +127,7 @@ HydroConfig parse_hydro_config(io::ConfigNode& cfg) {
     default_radii = parse_bead_radii(cfg);
   }
 
+  bool default_extrapolation_used = false;  // a top-level default no species uses has no effect
   std::set<std::string> seen;
   auto nodes = cfg.objects("species");
   if (nodes.empty()) cfg.fail("species", "expected at least one species");
@@ -140,6 +141,7 @@ HydroConfig parse_hydro_config(io::ConfigNode& cfg) {
     job.construction_name = construction.name;
     job.construction = construction.beads;
     check_construction_covers(n, job);
+    default_extrapolation_used |= !n.has("extrapolation");
     job.extrapolation = parse_extrapolation(n, default_extrapolation);
     if (n.has("bead_radii")) {
       job.bead_radii = parse_bead_radii(n);
@@ -160,6 +162,8 @@ HydroConfig parse_hydro_config(io::ConfigNode& cfg) {
     }
     out.species.push_back(std::move(job));
   }
+  cfg.reject_unless(default_extrapolation_used, "extrapolation",
+                    "(a default) with every species setting its own extrapolation");
   return out;
 }
 
