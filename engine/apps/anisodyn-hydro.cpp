@@ -33,10 +33,12 @@ nlohmann::json to_json(const Mat6& m) {
   return rows;
 }
 
-/// The default construction keeps its original wording, so that its species files do not change.
+/// The default construction keeps its original wording; the extrapolation is named in it.
 std::string method_of(const HydroSpeciesJob& job) {
-  std::string method = "shell model, RPY mobility with overlap correction, resistance about the centre of diffusion "
-                       "extrapolated linearly to zero bead radius";
+  std::string method = std::string("shell model, RPY mobility with overlap correction, resistance about the centre of "
+                                   "diffusion extrapolated ") +
+                       (job.extrapolation == ExtrapolationOrder::Linear ? "linearly" : "quadratically") +
+                       " to zero bead radius";
   if (job.construction != &shell_beads) method += "; shell construction " + job.construction_name;
   return method;
 }
@@ -56,11 +58,13 @@ nlohmann::json species_entry(const HydroSpeciesJob& job, const DiffusionTensorRe
           {"D_rot", to_json(r.D_rot())},
           {"hydro",
            {{"method", method_of(job)},
+            {"extrapolation", extrapolation_name(r.extrapolation)},
             {"diffusion_tensor", to_json(r.diffusion)},
             {"resistance_tensor", to_json(r.resistance)},
             {"centre_of_diffusion", to_json(r.centre_of_diffusion)},
             {"max_relative_coupling", r.relative_coupling},
-            {"extrapolation_error", {{"D_trans", to_json(Vec3(err.head<3>()))}, {"D_rot", to_json(Vec3(err.tail<3>()))}}},
+            {"extrapolation_error", {{"D_trans", to_json(Vec3(err.head<3>()))}, {"D_rot", to_json(Vec3(err.tail<3>()))},
+                                     {"compared_with", r.error_reference_of(r.extrapolation)}}},
             {"shells", shells}}}};
 }
 
@@ -75,8 +79,9 @@ void print_summary(const std::string& name, const DiffusionTensorResult& r) {
 
 int main(int argc, char** argv) {
   const io::ToolInfo info{"anisodyn-hydro", "infinite-dilution diffusion tensors of rigid particles from shell models",
-                          "Configuration keys: species[] {name, shape, shells | bead_radii, construction}, shells {count, "
-                          "max_beads, size_ratio}, bead_radii, symmetry, construction (surface_grid | cell_centres). The output is a species file: JSON, or HDF5 when it ends "
+                          "Configuration keys: species[] {name, shape, shells | bead_radii, construction, extrapolation}, shells "
+                          "{count, max_beads, size_ratio}, bead_radii, symmetry, construction (surface_grid | cell_centres), "
+                          "extrapolation (linear | quadratic). The output is a species file: JSON, or HDF5 when it ends "
                           "in .h5. Units: lengths in the shape's unit ℓ, D_trans in ℓ²/τ, D_rot in rad²/τ, with "
                           "τ = ηℓ³/k_BT. See docs/hydro.md."};
   return io::run_tool(argc, argv, info, [&](io::CommonOptions& opt) {
@@ -99,7 +104,8 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "%s: shell %zu/%zu  σ_b = %.4g  %zu beads  (mirror group %d, largest block %zu)  %.2f s\n",
                      job.name.c_str(), k + 1, total, s.sigma_b, s.beads, s.symmetry_order, s.largest_block, s.seconds);
       };
-      const DiffusionTensorResult r = compute_diffusion_tensor(job.shape, job.bead_radii, options, progress, job.construction);
+      const DiffusionTensorResult r = compute_diffusion_tensor(job.shape, job.bead_radii, options, progress, job.construction,
+                                                               job.extrapolation);
       if (!opt.quiet) print_summary(job.name, r);
       species.push_back(species_entry(job, r));
     }

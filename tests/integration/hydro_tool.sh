@@ -53,21 +53,36 @@ run_bad "repeated name" "o7.json.json.*species\[1\]\.name.*unique" \
   '{"species": [{"name": "x", "shape": {"type": "sphere", "diameter": 1}}, {"name": "x", "shape": {"type": "sphere", "diameter": 2}}]}' o7.json
 run_bad "unknown shell construction" "o8.json.json.*construction.*(one of|expected)" \
   '{"species": [{"name": "x", "shape": {"type": "sphere", "diameter": 1}}], "construction": "voronoi"}' o8.json
+run_bad "unknown extrapolation" "o10.json.json.*species\[0\]\.extrapolation.*(one of|expected)" \
+  '{"species": [{"name": "x", "shape": {"type": "sphere", "diameter": 1}, "extrapolation": "cubic"}]}' o10.json
 run_bad "construction that does not cover the shape" "o9.json.json.*species\[0\]\.construction.*cell_centres shell construction covers" \
   '{"species": [{"name": "x", "shape": {"type": "spherocylinder", "length": 2, "diameter": 1}, "construction": "cell_centres"}]}' o9.json
 
 # The second shell construction runs and says so in the method; the default's method is unchanged.
+# The extrapolation: linear by default, quadratic on request (per species); each species names its
+# fit, and its error estimate names the fit it is compared with (the next higher one).
 cat > cells.json <<'JSON'
-{"species": [{"name": "cube", "shape": {"type": "cube", "edge": 1}, "construction": "cell_centres"}],
+{"species": [{"name": "cube", "shape": {"type": "cube", "edge": 1}, "construction": "cell_centres"},
+             {"name": "cube_quadratic", "shape": {"type": "cube", "edge": 1}, "extrapolation": "quadratic"}],
  "shells": {"count": 4, "max_beads": 1500}}
 JSON
-"$bin/anisodyn-hydro" -q --config cells.json --output cells.json.out.json || { echo "FAIL: cell_centres does not run"; exit 1; }
-"$PYTHON" - <<'PY' || { echo "FAIL: construction in the method"; exit 1; }
+"$bin/anisodyn-hydro" -q --config cells.json --output cells.json.out.json || { echo "FAIL: cell_centres or quadratic does not run"; exit 1; }
+"$PYTHON" - <<'PY' || { echo "FAIL: construction or extrapolation in the species file"; exit 1; }
 import json
-cells = json.load(open("cells.json.out.json"))["species"][0]["hydro"]["method"]
-default = next(s for s in json.load(open("species.json"))["species"] if s["name"] == "cube")["hydro"]["method"]
-assert cells.endswith("; shell construction cell_centres"), cells
-assert "construction" not in default, default
+cells, quad = json.load(open("cells.json.out.json"))["species"]
+lin = next(s for s in json.load(open("species.json"))["species"] if s["name"] == "cube")
+assert cells["hydro"]["method"].endswith("; shell construction cell_centres"), cells["hydro"]["method"]
+assert "construction" not in lin["hydro"]["method"], lin["hydro"]["method"]
+assert lin["hydro"]["extrapolation"] == "linear", lin["hydro"]["extrapolation"]
+assert lin["hydro"]["method"].endswith("extrapolated linearly to zero bead radius"), lin["hydro"]["method"]
+assert lin["hydro"]["extrapolation_error"]["compared_with"] == "quadratic"
+assert quad["hydro"]["extrapolation"] == "quadratic"
+assert quad["hydro"]["method"].endswith("extrapolated quadratically to zero bead radius"), quad["hydro"]["method"]
+assert quad["hydro"]["extrapolation_error"]["compared_with"] == "cubic"
+# Same shells, another fit: the shell table agrees, the extrapolated D do not.
+assert all(a["sigma_b"] == b["sigma_b"] and abs(a["D_rot"][0] / b["D_rot"][0] - 1) < 1e-12
+           for a, b in zip(quad["hydro"]["shells"], lin["hydro"]["shells"]))
+assert abs(quad["D_rot"][0] / lin["D_rot"][0] - 1) > 1e-6, (quad["D_rot"], lin["D_rot"])
 PY
 
 cat > bad_from.json <<'JSON'

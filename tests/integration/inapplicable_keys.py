@@ -170,6 +170,8 @@ CASES += [
     ("default shells no species uses", "hydro", HYDRO, None, {"shells": {"count": 3}}, "shells"),
     ("default construction no species uses", "hydro", HYDRO, None,
      {"construction": "cell_centres", "species[0].construction": "surface_grid"}, "construction"),
+    ("default extrapolation no species uses", "hydro", HYDRO, None,
+     {"extrapolation": "quadratic", "species[0].extrapolation": "linear"}, "extrapolation"),
     ("default bead radii no species uses", "hydro", HYDRO, None,
      {"bead_radii": [0.2, 0.15, 0.1], "species": [dict(SPHERE, shells={"count": 3, "max_beads": 200})]}, "bead_radii"),
 ]

@@ -5,6 +5,9 @@
 //    beads shifted (brute force), and the symmetric coupling at the centre of diffusion;
 //  - the extrapolated sphere against Stokes–Einstein and Stokes–Einstein–Debye (0.5 %), a prolate
 //    spheroid against Perrin (1 % translation, 2 % rotation; tests/support/hydro_theory.hpp);
+//  - each extrapolation fit recovers its own polynomial exactly; the chosen fit (linear or
+//    quadratic, the `extrapolation` key) is the output and its error estimate compares with the
+//    next higher fit;
 //  - shells of both constructions lie on the surface they model; the cell-centre sphere also
 //    matches Stokes–Einstein–Debye within 0.5 %; bad shell series are refused;
 //  - species files round-trip through JSON and HDF5 and feed species definitions.
@@ -15,6 +18,7 @@
 #include "anisodyn/core/error.hpp"
 #include "anisodyn/hydro/diffusion_tensor.hpp"
 #include "anisodyn/hydro/extrapolation.hpp"
+#include "anisodyn/hydro/hydro_config.hpp"
 #include "anisodyn/hydro/mirror_symmetry.hpp"
 #include "anisodyn/hydro/rigid_body_resistance.hpp"
 #include "anisodyn/hydro/rpy.hpp"
@@ -217,7 +221,83 @@ TEST(Extrapolation, RecoversALineAndNeedsThreeRadii) {
   EXPECT_NEAR(e.linear, 1.0, 1e-12);
   EXPECT_NEAR(e.slope, 5.0, 1e-12);
   EXPECT_NEAR(e.quadratic, 1.0, 1e-10);
+  ASSERT_TRUE(e.cubic.has_value());
+  EXPECT_NEAR(*e.cubic, 1.0, 1e-10);
   EXPECT_THROW(extrapolate_to_zero_size({0.1, 0.2, 0.2}, {1, 2, 2}), InputError);
+}
+
+TEST(Extrapolation, EachFitRecoversItsPolynomialAndTheCubicNeedsFourRadii) {
+  // y = 1 + 2σ + 30σ² − 100σ³ at σ_b of the size of real shells (T/(2n)).
+  const std::vector<double> sigma{0.0625, 0.05, 0.0416667, 0.0357143, 0.03125};
+  std::vector<double> parabola, cubic;
+  for (double x : sigma) {
+    parabola.push_back(1 + 2 * x + 30 * x * x);
+    cubic.push_back(1 + 2 * x + 30 * x * x - 100 * x * x * x);
+  }
+  const auto p = extrapolate_to_zero_size(sigma, parabola);
+  EXPECT_NEAR(p.quadratic, 1.0, 1e-11);
+  EXPECT_NEAR(*p.cubic, 1.0, 1e-10);
+  EXPECT_GT(std::abs(p.linear - 1.0), 1e-3);  // a line cannot follow the curvature
+  EXPECT_DOUBLE_EQ(p.intercept(ExtrapolationOrder::Linear), p.linear);
+  EXPECT_DOUBLE_EQ(p.intercept(ExtrapolationOrder::Quadratic), p.quadratic);
+  const auto c = extrapolate_to_zero_size(sigma, cubic);
+  EXPECT_NEAR(*c.cubic, 1.0, 1e-10);
+  EXPECT_GT(std::abs(c.quadratic - 1.0), 1e-6);
+  const auto three = extrapolate_to_zero_size({0.1, 0.2, 0.3, 0.3}, {1, 2, 3, 3});
+  EXPECT_FALSE(three.cubic.has_value());  // three distinct radii: no cubic
+}
+
+TEST(DiffusionTensor, TheChosenExtrapolationIsTheOutputAndItsErrorEstimateComparesWithTheNextFit) {
+  const HydroShape s = HydroShape::sphere(1.0);
+  const std::vector<double> radii = choose_bead_radii(s, {4, 1500, 2.0});
+  const auto lin = compute_diffusion_tensor(s, radii, {}, nullptr, &shell_beads, ExtrapolationOrder::Linear);
+  const auto quad = compute_diffusion_tensor(s, radii, {}, nullptr, &shell_beads, ExtrapolationOrder::Quadratic);
+  EXPECT_EQ(lin.extrapolation, ExtrapolationOrder::Linear);
+  EXPECT_EQ(quad.extrapolation, ExtrapolationOrder::Quadratic);
+  ASSERT_TRUE(quad.cubic_diffusion.has_value());
+  EXPECT_TRUE(lin.diffusion.isApprox(lin.linear_diffusion, 1e-14));
+  EXPECT_TRUE(quad.diffusion.isApprox(quad.quadratic_diffusion, 1e-14));
+  EXPECT_TRUE(lin.quadratic_diffusion.isApprox(quad.quadratic_diffusion, 1e-14));  // same shells, same fits
+  EXPECT_EQ(lin.error_reference_of(ExtrapolationOrder::Linear), "quadratic");
+  EXPECT_EQ(quad.error_reference_of(ExtrapolationOrder::Quadratic), "cubic");
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_NEAR(lin.relative_error[i], std::abs(lin.quadratic_diffusion(i, i) / lin.linear_diffusion(i, i) - 1.0), 1e-14);
+    EXPECT_NEAR(quad.relative_error[i], std::abs((*quad.cubic_diffusion)(i, i) / quad.quadratic_diffusion(i, i) - 1.0),
+                1e-14);
+  }
+  // Three radii: no cubic, so the quadratic fit is checked against the line.
+  const std::vector<double> three(radii.begin(), radii.begin() + 3);
+  const auto q3 = compute_diffusion_tensor(s, three, {}, nullptr, &shell_beads, ExtrapolationOrder::Quadratic);
+  EXPECT_FALSE(q3.cubic_diffusion.has_value());
+  EXPECT_EQ(q3.error_reference_of(ExtrapolationOrder::Quadratic), "linear");
+  EXPECT_NEAR(q3.relative_error[0], std::abs(q3.linear_diffusion(0, 0) / q3.quadratic_diffusion(0, 0) - 1.0), 1e-14);
+}
+
+TEST(HydroConfig, ExtrapolationKeyAtTopLevelAndPerSpecies) {
+  const nlohmann::json sphere{{"type", "sphere"}, {"diameter", 1}};
+  const nlohmann::json radii{0.1, 0.08, 0.06};
+  {
+    nlohmann::json j{{"species", {{{"name", "a"}, {"shape", sphere}, {"bead_radii", radii}}}}};
+    io::ConfigNode cfg(j, "h.json");
+    EXPECT_EQ(parse_hydro_config(cfg).species[0].extrapolation, kDefaultExtrapolation);
+  }
+  {
+    nlohmann::json j{{"extrapolation", "quadratic"},
+                     {"species", {{{"name", "a"}, {"shape", sphere}, {"bead_radii", radii}},
+                                  {{"name", "b"}, {"shape", sphere}, {"bead_radii", radii}, {"extrapolation", "linear"}}}}};
+    io::ConfigNode cfg(j, "h.json");
+    const HydroConfig c = parse_hydro_config(cfg);
+    EXPECT_EQ(c.species[0].extrapolation, ExtrapolationOrder::Quadratic);
+    EXPECT_EQ(c.species[1].extrapolation, ExtrapolationOrder::Linear);
+  }
+  nlohmann::json bad{{"extrapolation", "cubic"}, {"species", {{{"name", "a"}, {"shape", sphere}, {"bead_radii", radii}}}}};
+  io::ConfigNode cfg(bad, "h.json");
+  EXPECT_THROW(parse_hydro_config(cfg), InputError);
+  // A top-level default that every species overrides has no effect: refused.
+  nlohmann::json unused{{"extrapolation", "quadratic"},
+                        {"species", {{{"name", "a"}, {"shape", sphere}, {"bead_radii", radii}, {"extrapolation", "linear"}}}}};
+  io::ConfigNode cfg2(unused, "h.json");
+  EXPECT_THROW(parse_hydro_config(cfg2), InputError);
 }
 
 TEST(ShellSeriesChoice, RefusesTooFewBeadsAndSnapsCuboidRadii) {

@@ -1,16 +1,19 @@
 // The two shell constructions against each other (docs/validation.md reports these numbers).
 // "surface_grid" (the default: grid nodes, edges and corners included) and "cell_centres" (one bead
 // per cell centre, none on an edge) share no placement rule. Both at 5 shells, σ_b over a factor 2,
-// finest ≈ 6000 beads (sphere) or ≈ 12000 (cube, boards 1×1×12 and 1×8×12). Asserted:
-//  - the translational diagonal of D, as the tool outputs it (linear extrapolation), agrees within
-//    0.5 % for all four bodies, and the rotational diagonal for the sphere;
-//  - every diagonal element, extrapolated quadratically instead, agrees within 0.5 %: the two
-//    discretisations converge to the same body.
+// finest ≈ 6000 beads (sphere) or ≈ 12000 (cube, boards 1×1×12 and 1×8×12). Asserted, within 0.5 %:
+//  - with `"extrapolation": "quadratic"`: every diagonal element of D as the tool outputs it, for
+//    all four bodies (the two discretisations converge to the same body);
+//  - with the default (linear, kDefaultExtrapolation): the translational diagonal for all four
+//    bodies, and the rotational diagonal for the sphere.
 // Printed, not asserted: the linearly extrapolated rotational diagonal of the cuboids, where the two
-// constructions differ by up to 0.84 % (the issue asked for 0.5 %: not met). Refining the shells
-// (docs/validation.md, manifests/validation/hydro_shell_convergence.json) shows the two series
-// approaching one limit from opposite sides, so the difference is the linear extrapolation's own
-// error (about half of it in each construction), not a disagreement about the body.
+// constructions differ by up to 0.84 % (the issue asked for 0.5 %: not met with the default).
+// Refining the shells (docs/validation.md, manifests/validation/hydro_shell_convergence.json) shows
+// the two series approaching one limit from opposite sides, so that difference is the linear
+// extrapolation's own error, not a disagreement about the body. The quadratic fit is not the
+// default because it is worse than the line for thin, under-resolved bodies (the φ = 1/10 and 1/5
+// spheroids of test_hydro_validation_slow.cpp; docs/decisions.md).
+// Also printed: the cubic fits, and each construction's error estimate for both fits.
 // Slow: about 1.5 minutes of CPU time.
 #include <gtest/gtest.h>
 
@@ -35,21 +38,43 @@ void print_deviations(const char* label, const Mat6& cells, const Mat6& grid) {
   std::printf("\n");
 }
 
-/// assert_linear_rotation: the sphere's rotational diagonal is held to the criterion as well.
+void print_error_estimates(const char* label, const DiffusionTensorResult& r) {
+  for (auto order : {ExtrapolationOrder::Linear, ExtrapolationOrder::Quadratic}) {
+    const Vec6 e = r.relative_error_of(order);
+    std::printf("  %-12s %-9s error estimate (vs %s), %%:", label, extrapolation_name(order).c_str(),
+                r.error_reference_of(order).c_str());
+    for (int i = 0; i < 6; ++i) std::printf(" %.3f", 100 * e[i]);
+    std::printf("\n");
+  }
+}
+
+/// assert_linear_rotation: the default's rotational diagonal is held to the criterion as well.
 void expect_constructions_agree(const char* name, const HydroShape& shape, std::size_t max_beads, bool assert_linear_rotation) {
   const auto grid = solve(shape, max_beads, &shell_beads);
   const auto cells = solve(shape, max_beads, &cell_centre_beads);
   std::printf("%s: cell_centres vs surface_grid, %% (D_t,x D_t,y D_t,z D_r,x D_r,y D_r,z); finest shells %zu, %zu beads;"
-              " extrapolation error estimates %.2f%%, %.2f%%\n",
-              name, grid.shells.back().beads, cells.shells.back().beads, 100 * grid.relative_error.maxCoeff(),
-              100 * cells.relative_error.maxCoeff());
-  print_deviations("linear", cells.diffusion, grid.diffusion);
+              " default extrapolation %s\n",
+              name, grid.shells.back().beads, cells.shells.back().beads, extrapolation_name(kDefaultExtrapolation).c_str());
+  print_deviations("linear", cells.linear_diffusion, grid.linear_diffusion);
   print_deviations("quadratic", cells.quadratic_diffusion, grid.quadratic_diffusion);
+  if (cells.cubic_diffusion && grid.cubic_diffusion) print_deviations("cubic", *cells.cubic_diffusion, *grid.cubic_diffusion);
+  print_error_estimates("surface_grid", grid);
+  print_error_estimates("cell_centres", cells);
+  std::printf("  D (surface_grid, cell_centres) linear / quadratic / cubic:\n");
+  for (int i = 0; i < 6; ++i)
+    std::printf("    %d: %.7g %.7g / %.7g %.7g / %.7g %.7g\n", i, grid.linear_diffusion(i, i), cells.linear_diffusion(i, i),
+                grid.quadratic_diffusion(i, i), cells.quadratic_diffusion(i, i),
+                grid.cubic_diffusion ? (*grid.cubic_diffusion)(i, i) : 0.0,
+                cells.cubic_diffusion ? (*cells.cubic_diffusion)(i, i) : 0.0);
+  // The tool's output with either extrapolation: diffusion_of(order) is what it writes for that order.
   for (int i = 0; i < 6; ++i) {
-    if (i < 3 || assert_linear_rotation)
-      EXPECT_LT(std::abs(cells.diffusion(i, i) / grid.diffusion(i, i) - 1.0), kAgreement) << name << " linear, diagonal " << i;
-    EXPECT_LT(std::abs(cells.quadratic_diffusion(i, i) / grid.quadratic_diffusion(i, i) - 1.0), kAgreement)
+    EXPECT_LT(std::abs(cells.diffusion_of(ExtrapolationOrder::Quadratic)(i, i) /
+                           grid.diffusion_of(ExtrapolationOrder::Quadratic)(i, i) - 1.0),
+              kAgreement)
         << name << " quadratic, diagonal " << i;
+    if (i < 3 || assert_linear_rotation) {
+      EXPECT_LT(std::abs(cells.diffusion(i, i) / grid.diffusion(i, i) - 1.0), kAgreement) << name << " default, diagonal " << i;
+    }
   }
 }
 

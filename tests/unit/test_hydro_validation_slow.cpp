@@ -1,5 +1,9 @@
 // Shell-model diffusion tensors against exact references (docs/validation.md, the hydro section,
-// reports these numbers). Slow: about five minutes of CPU time.
+// reports these numbers). The sphere and spheroid references are asserted on the tool's default
+// output (kDefaultExtrapolation, linear), the capacitance bound on both fits the tool offers
+// (linear and quadratic, each with its own error estimate in δ); both fits are printed throughout.
+// The quadratic fit fails the φ = 1/10 Perrin criteria at these shells (docs/decisions.md), which is
+// why it is not the default. Slow: about five minutes of CPU time.
 //  - sphere: Stokes–Einstein and Stokes–Einstein–Debye within 0.5 %;
 //  - the 16 constant-volume spheroids of spec 40 §5.3 (φ = 1/10 … 10): Perrin's exact ellipsoid
 //    results (tests/support/hydro_theory.hpp) within 1 % (translation) and 2 % (rotation) per axis;
@@ -11,9 +15,9 @@
 //    R2983 (1993); for ellipsoids R_h = C exactly). Asserted: C(1 − δ) ≤ R_h ≤ 1.025 C, where δ is
 //    only the stated numerical error, δ = e + 4 SE(C)/C + b(C):
 //      e     the error anisodyn-hydro states for the body (the largest over the six diagonals of
-//            |linear − quadratic extrapolation| / linear). The translational diagonals' estimate
-//            alone is smaller than the known error for 8 of the 17 ellipsoids (by up to 0.04 %
-//            of R_h), so it would not bound the shell error;
+//            its extrapolation-error estimate, DiffusionTensorResult::relative_error). The
+//            translational diagonals' estimate alone is smaller than the known error of several
+//            ellipsoids, so it would not bound the shell error;
 //      SE(C) the walk-on-spheres standard error (4 SE, as for every statistical test here), 0 for
 //            the closed-form ellipsoid capacitance;
 //      b(C)  the bound on the walk's ε-shell bias, which can only raise C (walk_on_spheres.hpp).
@@ -97,17 +101,23 @@ struct Capacitance {
   double value, standard_error, bias_bound;
 };
 
-/// One row of the R_h/C table, with its assertions.
+/// One row of the R_h/C table, for either extrapolation the tool offers, each with its own error
+/// estimate in δ.
 void check_bound(const std::string& name, const DiffusionTensorResult& r, const Capacitance& C) {
-  const double Rh = hydrodynamic_radius(r.D_trans().mean());
-  const double e = r.relative_error.maxCoeff();
-  const double delta = e + kSigmas * C.standard_error / C.value + C.bias_bound;
-  std::printf("%-22s R_h %.5f  C %.5f ± %.5f  R_h/C %.5f  delta %.3f%%  (shell error %.3f%%, translational %.3f%%)\n",
-              name.c_str(), Rh, C.value, C.standard_error, Rh / C.value, 100 * delta, 100 * e,
-              100 * r.relative_error.head<3>().maxCoeff());
   EXPECT_LE(C.standard_error, kMaxRelativeSE * C.value) << name;
-  EXPECT_GE(Rh, C.value * (1.0 - delta)) << name << ": R_h below the capacitance bound";
-  EXPECT_LE(Rh, (1.0 + kWithinCapacitance) * C.value) << name << ": R_h more than 2.5 % above C";
+  for (auto order : {ExtrapolationOrder::Linear, ExtrapolationOrder::Quadratic}) {
+    const Mat6& D = r.diffusion_of(order);
+    const double Rh = hydrodynamic_radius(D.diagonal().head<3>().mean());
+    const Vec6 err = r.relative_error_of(order);
+    const double e = err.maxCoeff();
+    const double delta = e + kSigmas * C.standard_error / C.value + C.bias_bound;
+    std::printf("%-22s %-9s R_h %.5f  C %.5f ± %.5f  R_h/C %.5f  delta %.3f%%  (shell error %.3f%%, translational %.3f%%)\n",
+                name.c_str(), extrapolation_name(order).c_str(), Rh, C.value, C.standard_error, Rh / C.value, 100 * delta,
+                100 * e, 100 * err.head<3>().maxCoeff());
+    const std::string fit = name + " (" + extrapolation_name(order) + ")";
+    EXPECT_GE(Rh, C.value * (1.0 - delta)) << fit << ": R_h below the capacitance bound";
+    EXPECT_LE(Rh, (1.0 + kWithinCapacitance) * C.value) << fit << ": R_h more than 2.5 % above C";
+  }
 }
 
 Capacitance walk_capacitance(const ConvexBody& body, const LaunchEllipsoid& launch,
@@ -133,24 +143,33 @@ const Capacitance& cuboid_capacitance(const Vec3& edges) {
 
 TEST(HydroValidation, SphereMatchesStokesEinsteinAndDebye) {
   const auto& r = solve("sphere", HydroShape::sphere(1.0), 6000);
+  const double Dt = theory::stokes_einstein_diffusion(0.5), Dr = theory::stokes_einstein_debye_rotational_diffusion(0.5);
   for (int a = 0; a < 3; ++a) {
-    EXPECT_LT(std::abs(deviation(r.D_trans()[a], theory::stokes_einstein_diffusion(0.5))), 0.005);
-    EXPECT_LT(std::abs(deviation(r.D_rot()[a], theory::stokes_einstein_debye_rotational_diffusion(0.5))), 0.005);
+    EXPECT_LT(std::abs(deviation(r.D_trans()[a], Dt)), 0.005);
+    EXPECT_LT(std::abs(deviation(r.D_rot()[a], Dr)), 0.005);
   }
-  std::printf("sphere d=1: D_t %.6f (SE %.6f)  D_r %.6f (SED %.6f)\n", r.D_trans().x(),
-              theory::stokes_einstein_diffusion(0.5), r.D_rot().x(), theory::stokes_einstein_debye_rotational_diffusion(0.5));
+  for (auto order : {ExtrapolationOrder::Linear, ExtrapolationOrder::Quadratic}) {
+    const Mat6& D = r.diffusion_of(order);
+    std::printf("sphere d=1 %-9s: D_t %.6f (SE %.6f, %+.3f%%)  D_r %.6f (SED %.6f, %+.3f%%)  error estimate %.3f%%\n",
+                extrapolation_name(order).c_str(), D(0, 0), Dt, 100 * deviation(D(0, 0), Dt), D(3, 3), Dr,
+                100 * deviation(D(3, 3), Dr), 100 * r.relative_error_of(order).maxCoeff());
+  }
 }
 
 TEST(HydroValidation, SpheroidsOfSpec40MatchPerrin) {
-  std::printf("%8s %9s %9s %9s %9s %9s %9s  (deviation from Perrin, %%)\n", "phi", "Dt_x", "Dt_y", "Dt_z", "Dr_x", "Dr_y", "Dr_z");
+  std::printf("%8s %-9s %9s %9s %9s %9s %9s %9s  (deviation from Perrin, %%)\n", "phi", "fit", "Dt_x", "Dt_y", "Dt_z", "Dr_x",
+              "Dr_y", "Dr_z");
   for (double phi : kSpheroidPhis) {
     const Vec3 b = spheroid_semi_axes(phi);
     const auto& r = spheroid_solution(phi);
     const auto exact = theory::ellipsoid_diffusion(b.x(), b.y(), b.z());
-    std::printf("%8.4f", phi);
-    for (int k = 0; k < 3; ++k) std::printf(" %+9.3f", 100 * deviation(r.D_trans()[k], exact.D_trans[static_cast<std::size_t>(k)]));
-    for (int k = 0; k < 3; ++k) std::printf(" %+9.3f", 100 * deviation(r.D_rot()[k], exact.D_rot[static_cast<std::size_t>(k)]));
-    std::printf("   extrapolation error estimate %.2f%%\n", 100 * r.relative_error.maxCoeff());
+    for (auto order : {ExtrapolationOrder::Linear, ExtrapolationOrder::Quadratic}) {
+      const Mat6& D = r.diffusion_of(order);
+      std::printf("%8.4f %-9s", phi, extrapolation_name(order).c_str());
+      for (int k = 0; k < 3; ++k) std::printf(" %+9.3f", 100 * deviation(D(k, k), exact.D_trans[static_cast<std::size_t>(k)]));
+      for (int k = 0; k < 3; ++k) std::printf(" %+9.3f", 100 * deviation(D(k + 3, k + 3), exact.D_rot[static_cast<std::size_t>(k)]));
+      std::printf("   error estimate (vs %s) %.2f%%\n", r.error_reference_of(order).c_str(), 100 * r.relative_error_of(order).maxCoeff());
+    }
     for (int k = 0; k < 3; ++k) {
       EXPECT_LT(std::abs(deviation(r.D_trans()[k], exact.D_trans[static_cast<std::size_t>(k)])), 0.01) << "phi " << phi << " axis " << k;
       EXPECT_LT(std::abs(deviation(r.D_rot()[k], exact.D_rot[static_cast<std::size_t>(k)])), 0.02) << "phi " << phi << " axis " << k;

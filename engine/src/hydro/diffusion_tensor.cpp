@@ -38,6 +38,21 @@ double bead_radius_for_count(const HydroShape& shape, std::size_t beads, ShellCo
 
 }  // namespace
 
+Vec6 DiffusionTensorResult::relative_error_of(ExtrapolationOrder order) const {
+  const Mat6& chosen = diffusion_of(order);
+  const Mat6& reference = order == ExtrapolationOrder::Linear ? quadratic_diffusion
+                          : cubic_diffusion                   ? *cubic_diffusion
+                                                              : linear_diffusion;
+  Vec6 err;
+  for (int i = 0; i < 6; ++i) err[i] = std::abs(reference(i, i) - chosen(i, i)) / chosen(i, i);
+  return err;
+}
+
+std::string DiffusionTensorResult::error_reference_of(ExtrapolationOrder order) const {
+  if (order == ExtrapolationOrder::Linear) return "quadratic";
+  return cubic_diffusion ? "cubic" : "linear";
+}
+
 std::vector<double> choose_bead_radii(const HydroShape& shape, const ShellSeries& series, ShellConstruction construction) {
   if (series.count < 3) throw InputError("an extrapolation to zero bead size needs at least 3 shell resolutions");
   if (!(series.size_ratio > 1.0)) throw InputError("the coarsest/finest bead-size ratio must exceed 1");
@@ -61,7 +76,7 @@ std::vector<double> choose_bead_radii(const HydroShape& shape, const ShellSeries
 
 DiffusionTensorResult compute_diffusion_tensor(const HydroShape& shape, const std::vector<double>& bead_radii,
                                                const ResistanceOptions& options, const ShellProgress& progress,
-                                               ShellConstruction construction) {
+                                               ShellConstruction construction, ExtrapolationOrder extrapolation) {
   DiffusionTensorResult out;
   for (std::size_t k = 0; k < bead_radii.size(); ++k) {
     const auto start = std::chrono::steady_clock::now();
@@ -83,27 +98,33 @@ DiffusionTensorResult compute_diffusion_tensor(const HydroShape& shape, const st
 
   std::vector<double> sigma;
   for (const auto& s : out.shells) sigma.push_back(s.sigma_b);
-  Mat6 quadratic = Mat6::Zero();
+  Mat6 linear = Mat6::Zero(), quadratic = Mat6::Zero(), cubic = Mat6::Zero();
+  bool has_cubic = true;
   for (int i = 0; i < 6; ++i)
     for (int j = 0; j < 6; ++j) {
       std::vector<double> y;
       for (const auto& s : out.shells) y.push_back(s.resistance(i, j));
       const auto e = extrapolate_to_zero_size(sigma, y);
-      out.resistance(i, j) = e.linear;
+      linear(i, j) = e.linear;
       quadratic(i, j) = e.quadratic;
+      if (e.cubic) cubic(i, j) = *e.cubic; else has_cubic = false;
     }
+  out.extrapolation = extrapolation;
+  out.resistance = extrapolation == ExtrapolationOrder::Linear ? linear : quadratic;
   for (int a = 0; a < 3; ++a) {
     std::vector<double> y;
     for (const auto& s : out.shells) y.push_back(s.centre_of_diffusion[a]);
-    out.centre_of_diffusion[a] = extrapolate_to_zero_size(sigma, y).linear;
+    out.centre_of_diffusion[a] = extrapolate_to_zero_size(sigma, y).intercept(extrapolation);
   }
-  out.diffusion = out.resistance.inverse();
+  out.linear_diffusion = linear.inverse();
   out.quadratic_diffusion = quadratic.inverse();
-  for (int i = 0; i < 6; ++i)
-    out.relative_error[i] = std::abs(out.quadratic_diffusion(i, i) - out.diffusion(i, i)) / out.diffusion(i, i);
+  if (has_cubic) out.cubic_diffusion = cubic.inverse();
+  out.diffusion = out.diffusion_of(extrapolation);
+  out.relative_error = out.relative_error_of(extrapolation);
   out.relative_coupling = relative_coupling(out.diffusion);
   if (!out.diffusion.allFinite() || out.diffusion.diagonal().minCoeff() <= 0.0)
-    throw RuntimeFailure("the extrapolated diffusion tensor is not positive: the shells are too coarse for a linear extrapolation");
+    throw RuntimeFailure("the extrapolated diffusion tensor is not positive: the shells are too coarse for a " +
+                         extrapolation_name(extrapolation) + " extrapolation");
   return out;
 }
 

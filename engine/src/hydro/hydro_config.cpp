@@ -70,6 +70,16 @@ const ConstructionRegistration& parse_construction(io::ConfigNode& n, const std:
   n.fail("construction", "expected a known shell construction");
 }
 
+ExtrapolationOrder parse_extrapolation(io::ConfigNode& n, ExtrapolationOrder fallback) {
+  const ExtrapolationOrder orders[] = {ExtrapolationOrder::Linear, ExtrapolationOrder::Quadratic};
+  std::vector<std::string> names;
+  for (auto o : orders) names.push_back(extrapolation_name(o));
+  const std::string name = n.choice("extrapolation", names, extrapolation_name(fallback));
+  for (auto o : orders)
+    if (name == extrapolation_name(o)) return o;
+  n.fail("extrapolation", "expected linear or quadratic");
+}
+
 /// Builds the coarsest allowed shell once, so that a construction that does not cover the shape
 /// fails while parsing.
 void check_construction_covers(io::ConfigNode& n, const HydroSpeciesJob& job) {
@@ -108,6 +118,7 @@ HydroConfig parse_hydro_config(io::ConfigNode& cfg) {
   HydroConfig out;
   out.use_symmetry = cfg.boolean("symmetry", true);
   const std::string default_construction = parse_construction(cfg, kConstructionRegistry[0].name).name;
+  const ExtrapolationOrder default_extrapolation = parse_extrapolation(cfg, kDefaultExtrapolation);
   ShellSeries defaults;
   if (auto s = cfg.optional_object("shells")) defaults = parse_shell_series(*s, defaults);
   std::optional<std::vector<double>> default_radii;
@@ -117,7 +128,7 @@ HydroConfig parse_hydro_config(io::ConfigNode& cfg) {
   }
 
   // Top-level keys are defaults: each must reach at least one species, or it has no effect.
-  bool default_construction_used = false, default_series_used = false;
+  bool default_construction_used = false, default_series_used = false, default_extrapolation_used = false;
   std::set<std::string> seen;
   auto nodes = cfg.objects("species");
   if (nodes.empty()) cfg.fail("species", "expected at least one species");
@@ -134,6 +145,8 @@ HydroConfig parse_hydro_config(io::ConfigNode& cfg) {
     check_construction_covers(n, job);
     if (n.has("bead_radii") && n.has("shells")) n.reject_unless(false, "shells", "with bead_radii (the radii are given: either shells or bead_radii, not both)");
     default_series_used |= !n.has("bead_radii") && !n.has("shells");
+    default_extrapolation_used |= !n.has("extrapolation");
+    job.extrapolation = parse_extrapolation(n, default_extrapolation);
     if (n.has("bead_radii")) {
       job.bead_radii = parse_bead_radii(n);
     } else if (default_radii && !n.has("shells")) {
@@ -157,6 +170,7 @@ HydroConfig parse_hydro_config(io::ConfigNode& cfg) {
   cfg.reject_unless(default_construction_used, "construction", "(a default) " + own + "construction");
   cfg.reject_unless(default_series_used, "shells", "(a default) " + own + "bead_radii or shells");
   cfg.reject_unless(default_series_used, "bead_radii", "(a default) " + own + "bead_radii or shells");
+  cfg.reject_unless(default_extrapolation_used, "extrapolation", "(a default) " + own + "extrapolation");
   return out;
 }
 

@@ -3,13 +3,16 @@
 //
 // For each bead radius σ_b: build the shell, solve for the 6×6 resistance about the centroid, find
 // the centre of diffusion and re-express the tensors there. The resistance about the centre of
-// diffusion is then extrapolated element by element, linearly in σ_b, to σ_b → 0 and inverted
-// (friction is the quantity that is linear in σ_b: for a sphere shell K = 6πηR(1 + c σ_b/R) to
-// first order). The estimate of the extrapolation error of each diffusion coefficient is the
-// relative difference between the linear and the quadratic extrapolation.
+// diffusion is then extrapolated element by element to σ_b → 0 (a least-squares polynomial in σ_b
+// of the chosen order, linear or quadratic) and inverted (friction is the quantity that is linear
+// in σ_b to first order: for a sphere shell K = 6πηR(1 + c σ_b/R + …)). The estimate of the
+// extrapolation error of each diffusion coefficient compares the chosen fit with the next higher
+// one (relative_error_of).
 #include <functional>
+#include <optional>
 #include <vector>
 
+#include "anisodyn/hydro/extrapolation.hpp"
 #include "anisodyn/hydro/rigid_body_resistance.hpp"
 #include "anisodyn/hydro/shell_surface.hpp"
 
@@ -30,15 +33,29 @@ struct ShellSolution {
 
 struct DiffusionTensorResult {
   std::vector<ShellSolution> shells;
+  ExtrapolationOrder extrapolation = kDefaultExtrapolation;  // the fit behind resistance and diffusion
   Mat6 resistance = Mat6::Zero();     // extrapolated, about the centre of diffusion
   Mat6 diffusion = Mat6::Zero();      // its inverse (k_BT = 1)
   Vec3 centre_of_diffusion = Vec3::Zero();  // extrapolated, relative to the body centre
-  Mat6 quadratic_diffusion = Mat6::Zero();  // from the element-wise quadratic extrapolation instead
-  Vec6 relative_error = Vec6::Zero();  // |linear − quadratic| / linear for each diagonal D
+  // Every fit, whichever is chosen: the inverse of the element-wise extrapolated resistance.
+  Mat6 linear_diffusion = Mat6::Zero();
+  Mat6 quadratic_diffusion = Mat6::Zero();
+  std::optional<Mat6> cubic_diffusion;  // with ≥ 4 distinct bead radii
+  Vec6 relative_error = Vec6::Zero();  // relative_error_of(extrapolation)
   double relative_coupling = 0.0;      // largest |D_tr,ij|/√(D_tt,ii D_rr,jj)
 
   Vec3 D_trans() const { return diffusion.diagonal().head<3>(); }
   Vec3 D_rot() const { return diffusion.diagonal().tail<3>(); }
+
+  const Mat6& diffusion_of(ExtrapolationOrder order) const {
+    return order == ExtrapolationOrder::Linear ? linear_diffusion : quadratic_diffusion;
+  }
+  /// The error estimate of each diagonal D of the given fit: its relative difference from the
+  /// next higher fit. Linear: |linear − quadratic|/linear. Quadratic: |quadratic − cubic|/quadratic
+  /// with ≥ 4 distinct radii, else |quadratic − linear|/quadratic.
+  Vec6 relative_error_of(ExtrapolationOrder order) const;
+  /// The fit relative_error_of(order) compares with: "quadratic" or "cubic" (or "linear").
+  std::string error_reference_of(ExtrapolationOrder order) const;
 };
 
 struct ShellSeries {
@@ -58,6 +75,7 @@ using ShellProgress = std::function<void(const ShellSolution&, std::size_t index
 DiffusionTensorResult compute_diffusion_tensor(const HydroShape& shape, const std::vector<double>& bead_radii,
                                                const ResistanceOptions& options = {},
                                                const ShellProgress& progress = nullptr,
-                                               ShellConstruction construction = &shell_beads);
+                                               ShellConstruction construction = &shell_beads,
+                                               ExtrapolationOrder extrapolation = kDefaultExtrapolation);
 
 }  // namespace anisodyn::hydro

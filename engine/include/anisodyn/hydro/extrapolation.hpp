@@ -1,14 +1,31 @@
 #pragma once
-// Extrapolation of shell-model results to zero bead size (the shell-model procedure of HYDRO++:
-// each property is computed at several bead radii σ_b and extrapolated linearly to σ_b → 0).
+// Extrapolation of shell-model results to zero bead size. Each property is computed at several
+// bead radii σ_b and a least-squares polynomial in σ_b is fitted through the values; its intercept
+// is the σ_b → 0 limit. HYDRO++ (and spec 10 §8.4 step 5) fit a line; anisodyn-hydro can fit a
+// line or a parabola (docs/hydro.md, "Extrapolation"), and uses the next higher fit as the check
+// on the chosen one.
+#include <optional>
+#include <string>
 #include <vector>
 
 namespace anisodyn::hydro {
 
+/// The polynomial order of the fit whose intercept is reported.
+enum class ExtrapolationOrder { Linear = 1, Quadratic = 2 };
+
+/// The extrapolation anisodyn-hydro uses unless told otherwise (docs/hydro.md, docs/decisions.md).
+inline constexpr ExtrapolationOrder kDefaultExtrapolation = ExtrapolationOrder::Linear;
+
+/// "linear" or "quadratic".
+std::string extrapolation_name(ExtrapolationOrder order);
+
 struct ZeroSizeExtrapolation {
   double linear = 0.0;     // intercept of the least-squares line through (σ_b, y)
   double slope = 0.0;
-  double quadratic = 0.0;  // intercept of the least-squares parabola: a check on the curvature
+  double quadratic = 0.0;  // intercept of the least-squares parabola
+  std::optional<double> cubic;  // intercept of the least-squares cubic; needs ≥ 4 distinct σ_b
+
+  double intercept(ExtrapolationOrder order) const { return order == ExtrapolationOrder::Linear ? linear : quadratic; }
 };
 
 /// Needs at least three distinct σ_b (InputError otherwise).
