@@ -56,25 +56,22 @@ class Run:
 
     def check(self, label, value, reference, se, k, se_bound):
         """|value - reference| < k se, and se < se_bound (the run must be precise enough for the first to mean something)."""
-        z = self.report(label, value, reference, se, f", bound {se_bound:.3g}")
-        ok_dev, ok_se = abs(z) < k, se < se_bound
-        if not (ok_dev and ok_se):
+        z = self.report(label, value, reference, se)
+        if not abs(z) < k:
             print("    <-- FAIL")
-        if not ok_dev:
             self.failures.append(f"{label}: |deviation| = {abs(z):.2f} SE >= k = {k}")
-        if not ok_se:
-            self.failures.append(f"{label}: SE {se:.3g} >= bound {se_bound:.3g}")
+        self.check_se(label, se, se_bound, shown="  precision")
 
     @staticmethod
-    def report(label, value, reference, se, note=""):
+    def report(label, value, reference, se):
         """Prints value against reference in standard errors (and returns that number); asserts nothing."""
         z = (value - reference) / se if se > 0 else float("inf")
-        print(f"  {label}: {value:.6g} vs {reference:.6g}: {z:+.2f} SE (SE {se:.3g}{note})")
+        print(f"  {label}: {value:.6g} vs {reference:.6g}: {z:+.2f} SE (SE {se:.3g})")
         return z
 
-    def check_se(self, label, se, se_bound):
-        """se < se_bound: the run reached the precision it was designed for."""
-        print(f"  {label}: SE {se:.3g}, bound {se_bound:.3g}" + ("" if se < se_bound else "  <-- FAIL"))
+    def check_se(self, label, se, se_bound, shown=None):
+        """se < se_bound: the run reached the precision it was designed for. Printed as `shown` (default: label)."""
+        print(f"  {shown or label}: SE {se:.3g}, bound {se_bound:.3g}" + ("" if se < se_bound else "  <-- FAIL"))
         if not se < se_bound:
             self.failures.append(f"{label}: SE {se:.3g} >= bound {se_bound:.3g}")
 
