@@ -6,7 +6,7 @@ response times and friction ratios > 0; uniaxial order parameters U in [0, 1]; f
 p_b) in [0, 1]. Every engine trajectory (H5MD) must have finite positions, unit quaternions,
 strictly increasing frame times and acceptances in [0, 1]; a DMC run that balanced several species
 at equilibrium must report a realised balance within 5% of 1 (a sanity bound for short smoke runs;
-the 0.5% acceptance check is the full-size run in docs/validation.md). Prints each manifest's
+the 0.5% acceptance check is the slow test validation_dmc_balance, docs/validation.md). Prints each manifest's
 wall time. A manifest name given as a fourth argument runs
 only that one."""
 import glob
