@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Slow validation: DMC of hard spheres at eta = 0.30 does not depend on the MC time step.
+"""Slow validation: DMC of hard spheres at eta = 0.30 does not depend on the MC time step (for
+dt_MC <= 1e-3; the offset at 1e-2 is measured and printed).
 
 Runs manifests/validation/dmc_hs_eta0.30.json with anisodyn-run on one worker: N = 250 spheres,
 16 replicas (each melted by its own MC run), DMC for 9 tau at dt_MC = 1e-4, 1e-3 and 1e-2 tau,
@@ -9,8 +10,9 @@ diffusion coefficient D(t) = MSD(t)/6t at t = 1 tau (inside the cage-escape regi
 (MSD ~ 1.3 sigma^2, close to the long-time limit).
 
 Checks, with k = 4 and standard errors over the 16 independent replicas:
-- for every pair of time steps and each t, the mean paired difference D_a(t) - D_b(t) (same
-  replica, i.e. the same starting configuration) is within k SE of 0;
+- for the time steps in ASSERTED and each t, the mean paired difference D_a(t) - D_b(t) (same
+  replica, i.e. the same starting configuration) is within k SE of 0; the pairs with dt = 1e-2
+  are printed the same way but not asserted (see ASSERTED);
 - the SE of each D(t) is below the bound 1.5 D(t) / sqrt(n), n = replicas x particles x
   floor(9 tau / t) non-overlapping displacement windows: for independent windows,
   var(r^2)/<r^2>^2 = 2/3 + 5 alpha_2/3 <= 1 while the non-Gaussian parameter alpha_2 <= 0.2, and
@@ -29,9 +31,9 @@ from validation_runs import Run, mean_se  # noqa: E402
 K = 4.0
 TIMES = (1.0, 4.0)
 # The time steps whose agreement is asserted. dt = 1e-2 (acceptance 0.82) is run and reported but
-# not asserted: its D is 2.5% (1 tau) and 4% (4 tau) lower than at 1e-4, 4.8 and 4.4 SE, the
-# known bias of the acceptance-rescaled time mapping at large steps (accepted moves are shorter
-# than the trial moves on average). docs/validation.md states the measured offsets.
+# not asserted: its D is 2.4% (1 tau) and 4.1% (4 tau) lower than at 1e-4, 4.8 and 4.4 SE. The
+# time mapping assumes accepted moves are as long as trial moves on average; at large steps the
+# long ones are rejected more often. docs/validation.md states the measured offsets.
 ASSERTED = (1e-4, 1e-3)
 run = Run(sys.argv, "manifests/validation/dmc_hs_eta0.30.json")
 
