@@ -3,7 +3,7 @@
 //   (a) 1000 boards 12×3.46×1 at φ = 0.20 plus one pulled tracer (d = 1, Pe = 1, δt_s = 10⁻²);
 //   (b) 2000 boards 12×8×1 at η = 0.34 (aligned start, N_U⁻), δt = 10⁻²;
 //   (c) 1500 dipolar cubes at η = 0.02, field on (γ = 13, Ewald at relative accuracy 10⁻⁵), δt = 10⁻³.
-// The board D tensors of (a) are the bead-model values of manifests/data/boards_L12.species.json
+// The board D tensors of (a) are the bead-model values of manifests/data/boards_L12_bead_model.species.json
 // (anisodyn-hydro); (b) and (c) use the published values (spec 10 §8).
 #include <benchmark/benchmark.h>
 

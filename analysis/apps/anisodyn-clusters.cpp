@@ -219,6 +219,7 @@ void run_dipolar(StageRun& run) {
   DipolarChainAnalysis a(s, run.opt.config_name());
   TrajectoryNeeds needs;
   needs.positions = true;
+  needs.min_frames = 2;  // a time series
   run.each_replica(needs, [&](const Trajectory& t, std::size_t) { a.accumulate(t, sp.index); });
   if (s.transition_at_x2_maximum) {
     const double t1 = a.time_of_x2_maximum();
@@ -290,9 +291,9 @@ int main(int argc, char** argv) {
   const io::ToolInfo info{
       "anisodyn-clusters", "cluster analyses: nematic-like HBP clusters, dipolar chains of cubes, DBSCAN calibration of the bond threshold",
       "Configuration keys: inputs, csv, mode (nematic | dipolar | dbscan), species; nematic: axis (T W L), K1, K2, K_par, K_perp, "
-      "cos_bins, t_min; dipolar: gamma, sigma, bu_max, field_direction, transition_times, transition_at_x2_maximum, "
+      "cos_bins; dipolar: gamma, sigma, bu_max, field_direction, transition_times, transition_at_x2_maximum, "
       "transition_lag, transition_window, transition_lag_tolerance, plateau_fraction, max_chain_length; dbscan: gamma, sigma, "
-      "field_direction, min_pts, eps, r_max, eps_factors, t_min."};
+      "field_direction, min_pts, eps, r_max, eps_factors. All modes: window {from, to, stride}. See docs/analysis.md."};
   return run_analysis_stage(argc, argv, info, [](StageRun& run) {
     const std::string mode = run.cfg.choice("mode", {"nematic", "dipolar", "dbscan"});
     if (mode == "nematic") run_nematic(run);

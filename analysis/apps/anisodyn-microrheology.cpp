@@ -87,6 +87,7 @@ void run_passive(StageRun& run) {
   PassiveMicrorheology p(s, run.inputs.size(), run.opt.config_name());
   TrajectoryNeeds needs;
   needs.positions = true;
+  needs.min_frames = 2;  // one lag
   run.each_replica(needs, [&](const Trajectory& t, std::size_t) { p.accumulate(t); });
   write_passive(run, p.compute());
 }
@@ -94,30 +95,44 @@ void run_passive(StageRun& run) {
 void write_friction(StageRun& run, const ActiveResult& r, const nlohmann::json& details) {
   Table& t = run.out.table("friction_replicas", "steady tracer velocity per replica (spec 50 F3), in input order");
   using Replica = std::decay_t<decltype(r.replicas.front())>;
+  const double drive = r.D_s * r.beta_force;
   t.add("replica", "1", "index of the input trajectory", index_column(r.replicas.size()));
-  t.add("velocity", "length/tau", "spec 50 F3: least-squares slope of (r(t) - r(0)).e against mapped time over the steady part",
-        column_of(r.replicas, &Replica::velocity));
-  t.add("velocity_fit_se", "length/tau", "least-squares error of the slope (residuals of a random walk are correlated: indicative only)",
-        column_of(r.replicas, &Replica::velocity_error));
+  t.add("velocity", "length/tau",
+        "spec 50 F3: end-to-end drift over the steady part, [(r(t_end) - r(t_start)).e] / (t_end - t_start), the maximum-likelihood "
+        "drift of a random walk", column_of(r.replicas, &Replica::velocity));
+  t.add("velocity_path_se", "length/tau",
+        "error of that drift from the path's own increments, sqrt(sigma^2/(t_end - t_start)) with sigma^2 their variance per unit time "
+        "(assumes uncorrelated increments: indicative only)", column_of(r.replicas, &Replica::velocity_error));
+  t.add("displacement", "length", "(r(t_end) - r(t_start)).e", column_of(r.replicas, &Replica::displacement));
   t.add("t_start", "tau", "start of the steady part: first time the tracer has moved steady_distance (Decision: 2 sigma) along e, or steady_from",
         column_of(r.replicas, &Replica::t_start));
-  t.add("t_end", "tau", "last time of the fitted path", column_of(r.replicas, &Replica::t_end));
-  t.add("points", "1", "points in the fit", column_of(r.replicas, &Replica::points));
-  t.add("gamma_eff_over_gamma0", "1", "D_s beta F / velocity of this replica alone",
-        column_of(r.replicas, [&](const Replica& p) { return r.D_s * r.beta_force / p.velocity; }));
+  t.add("t_end", "tau", "last time of the path", column_of(r.replicas, &Replica::t_end));
+  t.add("points", "1", "path points in the steady part", column_of(r.replicas, &Replica::points));
+  t.add("gamma_eff_over_gamma0", "1", "D_s beta F / velocity of this replica alone (NaN at zero force)",
+        column_of(r.replicas, [&](const Replica& p) { return drive > 0.0 ? drive / p.velocity : std::nan(""); }));
 
   nlohmann::json d = details;
-  d["method"] = "D_s beta F / <v>, <v> the mean of the per-replica steady velocities; error by jackknife over replicas (time blocks of the steady part for one replica)";
+  d["method"] = "D_s beta F / <v>, <v> = sum of steady displacements / sum of steady durations over replicas (each replica's end-to-end "
+                "drift, pooled); errors by jackknife over replicas (consecutive time blocks of the steady part for one replica)";
   d["samples"] = r.velocity_samples;
   d["beta_force"] = r.beta_force;
   d["D_s"] = r.D_s;
   d["path_source"] = r.path_source;
+  d["velocity_replica_mean"] = r.replica_velocity.value;
+  d["velocity_replica_se"] = r.replica_velocity.error;
   run.out.scalar({"gamma_eff_over_gamma0", r.gamma_ratio.value, r.gamma_ratio.error, "1",
-                  "spec 50 F3: gamma_eff/gamma_0 = D_s beta F / <v_z>", d});
-  run.out.scalar({"mean_velocity", r.velocity.value, r.velocity.error, "length/tau", "mean steady tracer velocity <v_z> along the force over replicas", d});
+                  "spec 50 F3: gamma_eff/gamma_0 = D_s beta F / <v_z> (NaN: undefined at zero force, Pe = 0)", d});
+  run.out.scalar({"mean_velocity", r.velocity.value, r.velocity.error, "length/tau",
+                  "steady tracer velocity <v_z> along the force, sum of displacements / sum of durations over replicas; jackknife error", d});
+  run.out.scalar({"velocity_replica_sd", r.velocity_scatter, 0.0, "length/tau",
+                  "standard deviation of the per-replica (or per-block) steady velocities: the scatter behind the jackknife error of "
+                  "mean_velocity (about sd/sqrt(samples) when the steady parts are of similar length)", d});
   if (!run.opt.quiet)
-    std::fprintf(stderr, "anisodyn-microrheology: gamma_eff/gamma_0 = %.5g ± %.2g (<v> = %.5g, D_s beta F = %.5g, %zu samples)\n",
-                 r.gamma_ratio.value, r.gamma_ratio.error, r.velocity.value, r.D_s * r.beta_force, r.velocity_samples);
+    std::fprintf(stderr,
+                 "anisodyn-microrheology: gamma_eff/gamma_0 = %.5g ± %.2g (<v> = %.5g ± %.2g jackknife; per-sample sd %.3g, sd/sqrt(n) %.2g; "
+                 "D_s beta F = %.5g, %zu samples)\n",
+                 r.gamma_ratio.value, r.gamma_ratio.error, r.velocity.value, r.velocity.error, r.velocity_scatter, r.replica_velocity.error,
+                 drive, r.velocity_samples);
 }
 
 void write_density_map(StageRun& run, const ActiveResult& r, const nlohmann::json& details) {
@@ -182,7 +197,9 @@ void run_active(StageRun& run) {
   needs.orientations = s.density_map && s.order_axis >= 0 && bath_is_anisotropic(table, s);
   if (s.source != TracerPathSource::Frames) needs.observables.push_back("tracer_position");
   ActiveMicrorheology a(s, run.inputs.size(), run.opt.config_name());
-  run.each_replica(needs, [&](const Trajectory& t, std::size_t) { a.accumulate(t); });
+  // Each replica's drift is measured on its own time axis: runs of the same cycles map to different
+  // Brownian times (their preliminary balances differ), and runs given in time hold different frames.
+  run.each_replica(needs, [&](const Trajectory& t, std::size_t) { a.accumulate(t); }, kIndependentTimes);
   const ActiveResult r = a.compute();
   write_friction(run, r, details);
   if (r.has_map) write_density_map(run, r, details);
@@ -198,7 +215,7 @@ int main(int argc, char** argv) {
                           "passive: radius | tracer_diameter, kT, alpha_fit_decades, lags_per_decade, max_origins, fit {t_min, t_max}, evans_t_max. "
                           "active: beta_force | force (+ kT) | pe (+ radius | tracer_diameter), D_s, direction, bath_species, steady_distance, "
                           "steady_from, position_source (auto | frames | observable), density_map, bin_width | dz_bin, rho_bin, on_axis_radius, "
-                          "wake_threshold, order_axis (T W L | none)."};
+                          "wake_threshold, order_axis (T W L | none). Both: window {from, to, stride}. See docs/analysis.md."};
   return run_analysis_stage(argc, argv, info, [](StageRun& run) {
     const std::string mode = run.cfg.choice("mode", {"passive", "active"});
     if (mode == "passive") run_passive(run);

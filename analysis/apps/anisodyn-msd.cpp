@@ -45,9 +45,10 @@ void write_results(StageRun& run, const SelectedSpecies& sp, const MsdResult& r)
     run.out.scalar(s);
   }
   for (std::size_t k = 0; k < r.directors.size(); ++k) {
+    nlohmann::json details = {{"director", {r.directors[k].x(), r.directors[k].y(), r.directors[k].z()}}};
+    if (!r.director_species.empty()) details["director_species"] = r.director_species;  // spheres take the bath's
     run.out.scalar({"director_order_replica" + std::to_string(k) + "_" + sp.name, r.director_order[k], 0.0, "1",
-                    "largest eigenvalue U of the run-averaged Q tensor used as the reference (spec 50 section 3.1)",
-                    {{"director", {r.directors[k].x(), r.directors[k].y(), r.directors[k].z()}}}});
+                    "largest eigenvalue U of the run-averaged Q tensor used as the reference (spec 50 section 3.1)", details});
   }
   if (!run.opt.quiet)
     std::fprintf(stderr, "anisodyn-msd: %s: D_tot = %.5g ± %.2g over t in [%.4g, %.4g] (mean beta %.3f), NGP constant: %s\n",
@@ -60,13 +61,14 @@ void write_results(StageRun& run, const SelectedSpecies& sp, const MsdResult& r)
 int main(int argc, char** argv) {
   const io::ToolInfo info{"anisodyn-msd", "mean-squared displacements, non-Gaussian parameter and diffusion coefficients over replicas",
                           "Configuration keys: inputs, species, reference (axes | director | field | particle_axis), "
-                          "direction, axis (T W L | auto), body_frame, lags_per_decade, max_origins, fit {t_min, t_max}, "
-                          "ngp_constant, beta_smoothing_decades, csv. See docs/analysis.md."};
+                          "direction, axis (T W L | auto), director_species (spheres: whose director), body_frame, lags_per_decade, max_origins, fit {t_min, t_max}, "
+                          "ngp_constant, beta_smoothing_decades, window {from, to, stride}, csv. See docs/analysis.md."};
   return run_analysis_stage(argc, argv, info, [](StageRun& run) {
     const MsdSettings settings = parse_msd_settings(run.cfg);
     run.cfg.finish();
     TrajectoryNeeds needs;
     needs.positions = true;
+    needs.min_frames = 2;  // one lag
     needs.orientations = settings.reference == MsdReference::Director || settings.reference == MsdReference::ParticleAxis || settings.body_frame;
     if (settings.body_frame) needs.optional_elements = {"body_displacement"};
     auto analyses = analyse_each_species<MsdAnalysis>(run, settings, settings.species, needs);

@@ -67,7 +67,8 @@ void write_results(StageRun& run, const OrderStageSettings& settings, const Sele
 int main(int argc, char** argv) {
   const io::ToolInfo info{"anisodyn-order", "orientational order parameters over time, run averages and the phase verdict",
                           "Configuration keys: inputs, species, observables [U, B2, S_rod, S_cube], main_axis (T W L | auto), "
-                          "rod_axis, field_direction, chain_threshold {gamma, sigma, bu_max}, average_from, csv."};
+                          "rod_axis, field_direction, chain_threshold {gamma, sigma, bu_max}, average_from, window {from, to, stride}, csv. "
+                          "See docs/analysis.md."};
   return run_analysis_stage(argc, argv, info, [](StageRun& run) {
     const OrderStageSettings settings = parse_order_settings(run.cfg);
     run.cfg.finish();

@@ -78,7 +78,8 @@ void write_results(StageRun& run, const ResponseSettings& s, const SelectedSpeci
 int main(int argc, char** argv) {
   const io::ToolInfo info{"anisodyn-response", "switching response times t_ON, t_OFF with outlier rejection over trajectories",
                           "Configuration keys: inputs, species, signal (B2 | U_L | U_W | U_T | S_cube), main_axis (T W L | auto), "
-                          "field_direction, switch_on, switch_off, cycle, smoothing_fraction, outlier_threshold, csv."};
+                          "field_direction, switch_on, switch_off, cycle, smoothing_fraction, outlier_threshold, window {from, to, stride}, csv. "
+                          "See docs/analysis.md."};
   return run_analysis_stage(argc, argv, info, [](StageRun& run) {
     const ResponseSettings settings = parse_response_settings(run.cfg);
     run.cfg.finish();
@@ -87,7 +88,8 @@ int main(int argc, char** argv) {
     for (std::size_t k = 0; k < species.size(); ++k) analyses.emplace_back(settings, run.opt.config_name());
     TrajectoryNeeds needs;
     needs.orientations = true;
-    needs.observables = {"field_switches"};
+    needs.event_observables = {"field_switches"};  // windowed: the switches inside the window
+    needs.min_frames = 2;
     run.each_replica(needs, [&](const Trajectory& t, std::size_t) {
       for (std::size_t k = 0; k < species.size(); ++k) analyses[k].accumulate(t, species[k].index);
     });

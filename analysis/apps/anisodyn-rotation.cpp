@@ -50,13 +50,14 @@ void write_results(StageRun& run, const SelectedSpecies& sp, const RotationResul
 int main(int argc, char** argv) {
   const io::ToolInfo info{"anisodyn-rotation", "rotational MSAD and Legendre correlations per body axis, with D_r",
                           "Configuration keys: inputs, species, axes ([\"T\", \"W\", \"L\"]), lags_per_decade, max_origins, "
-                          "fit {t_min, t_max}, correlation_floor, csv. See docs/analysis.md."};
+                          "fit {t_min, t_max}, correlation_floor, window {from, to, stride}, csv. See docs/analysis.md."};
   return run_analysis_stage(argc, argv, info, [](StageRun& run) {
     const RotationSettings settings = parse_rotation_settings(run.cfg);
     run.cfg.finish();
     TrajectoryNeeds needs;
     needs.orientations = true;
     needs.optional_elements = {"rotation_vector"};
+    needs.min_frames = 2;  // one lag
     auto analyses = analyse_each_species<RotationAnalysis>(run, settings, settings.species, needs);
     for (auto& [sp, a] : analyses) write_results(run, sp, a.compute());
   });

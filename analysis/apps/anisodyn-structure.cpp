@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
   const io::ToolInfo info{"anisodyn-structure", "radial and directional pair correlations and slab density profiles",
                           "Configuration keys: inputs, pairs [[A, B], ...], dr, r_max, reference (field | director | none), "
                           "direction, axis (T W L | auto), director_species, cylinder_radius, slab_half_height, slab_bins, "
-                          "frames {first, last, stride}, csv."};
+                          "window {from, to, stride}, csv. See docs/analysis.md."};
   return run_analysis_stage(argc, argv, info, [](StageRun& run) {
     const PairStructureSettings settings = parse_structure_settings(run.cfg);
     run.cfg.finish();

@@ -13,12 +13,13 @@ int main(int argc, char** argv) {
   const io::ToolInfo info{"anisodyn-vanhove", "self van Hove functions (translational and angular) with Gaussian references",
                           "Configuration keys: inputs, species, times (required), components (tot x y z par perp), direction, "
                           "bin_width, bins, angular_axes ([\"T\", \"W\", \"L\"]), angular_bin_width, angular_dimension, "
-                          "lags_per_decade, max_origins, csv. See docs/analysis.md."};
+                          "lags_per_decade, max_origins, window {from, to, stride}, csv. See docs/analysis.md."};
   return run_analysis_stage(argc, argv, info, [](StageRun& run) {
     const VanHoveSettings settings = parse_van_hove_settings(run.cfg);
     run.cfg.finish();
     TrajectoryNeeds needs;
     needs.positions = true;
+    needs.min_frames = 2;  // one lag
     needs.orientations = !settings.angular_axes.empty();
     if (needs.orientations) needs.optional_elements = {"rotation_vector"};
     auto analyses = analyse_each_species<VanHoveAnalysis>(run, settings, settings.species, needs);

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <numbers>
 
-#include "anisodyn/analysis/fitting.hpp"
 #include "anisodyn/core/box.hpp"
 #include "anisodyn/core/error.hpp"
 #include "anisodyn/system/order.hpp"
@@ -39,11 +38,27 @@ const Species* find_species(const SpeciesTable& table, const std::string& name) 
   return nullptr;
 }
 
-/// Slope of y against x over [first, last) with its least-squares error.
-LinearFit fit_range(const std::vector<double>& x, const std::vector<double>& y, std::size_t first, std::size_t last) {
-  const std::vector<double> xs(x.begin() + static_cast<std::ptrdiff_t>(first), x.begin() + static_cast<std::ptrdiff_t>(last));
-  const std::vector<double> ys(y.begin() + static_cast<std::ptrdiff_t>(first), y.begin() + static_cast<std::ptrdiff_t>(last));
-  return fit_line(xs, ys);
+/// Drift of a random walk sampled at (x_k, y_k), k in [first, last]: the end-to-end slope, which is
+/// its maximum-likelihood estimate, and the error from the scatter of the increments about it.
+struct Drift {
+  double slope = kNaN, error = kNaN, rise = kNaN, run = kNaN;
+};
+Drift end_to_end_drift(const std::vector<double>& x, const std::vector<double>& y, std::size_t first, std::size_t last) {
+  Drift d;
+  d.rise = y[last] - y[first];
+  d.run = x[last] - x[first];
+  if (!(d.run > 0.0)) return d;
+  d.slope = d.rise / d.run;
+  const std::size_t n = last - first;  // increments
+  if (n < 2) return d;
+  double sq = 0.0;
+  for (std::size_t k = first; k < last; ++k) {
+    const double residual = (y[k + 1] - y[k]) - d.slope * (x[k + 1] - x[k]);
+    sq += residual * residual;
+  }
+  const double sigma2 = sq / d.run * static_cast<double>(n) / static_cast<double>(n - 1);  // per unit time
+  d.error = std::sqrt(sigma2 / d.run);
+  return d;
 }
 
 /// Distance behind the tracer (Δz < 0) where the on-axis profile first reaches `threshold`, walking
@@ -74,13 +89,15 @@ double DensityMapGrid::ring_volume(std::size_t m) const {
 ActiveMicrorheologySettings parse_active_microrheology_settings(io::ConfigNode& cfg) {
   ActiveMicrorheologySettings s;
   s.species = cfg.string("species");
-  s.bath_species = cfg.string("bath_species", "");
   const int forces = static_cast<int>(cfg.has("beta_force")) + static_cast<int>(cfg.has("force")) + static_cast<int>(cfg.has("pe"));
   if (forces > 1) cfg.fail("beta_force", "expected one of 'beta_force', 'force' (with kT) and 'pe', not several");
+  cfg.reject_unless(cfg.has("force"), "kT", "without 'force' (it converts force into beta_force = force / kT)");
   const double kT = cfg.positive("kT", 1.0);
-  if (cfg.has("beta_force")) s.beta_force = cfg.positive("beta_force");
-  if (cfg.has("force")) s.beta_force = cfg.positive("force") / kT;
-  if (cfg.has("pe")) s.peclet = cfg.positive("pe");
+  for (const char* key : {"radius", "tracer_diameter"})
+    cfg.reject_unless(!cfg.has("beta_force") && !cfg.has("force"), key, "with 'beta_force' or 'force' (the radius converts pe into beta_force)");
+  if (cfg.has("beta_force")) s.beta_force = cfg.non_negative("beta_force");
+  if (cfg.has("force")) s.beta_force = cfg.non_negative("force") / kT;
+  if (cfg.has("pe")) s.peclet = cfg.non_negative("pe");
   if (cfg.has("radius") && cfg.has("tracer_diameter")) cfg.fail("tracer_diameter", "expected either 'radius' or 'tracer_diameter', not both");
   if (cfg.has("radius")) s.radius = cfg.positive("radius");
   if (cfg.has("tracer_diameter")) s.radius = 0.5 * cfg.positive("tracer_diameter");
@@ -91,11 +108,18 @@ ActiveMicrorheologySettings parse_active_microrheology_settings(io::ConfigNode& 
     double sign = 1;
     if (box_axis_of(s.direction, sign) < 0) cfg.fail("direction", "expected a direction along a box axis, e.g. [0, 0, 1]");
   }
+  if (cfg.has("steady_distance") && cfg.has("steady_from"))
+    cfg.fail("steady_distance", "expected either steady_distance or steady_from: with steady_from the distance has no effect");
+  s.steady_distance_given = cfg.has("steady_distance");
   s.steady_distance = cfg.positive("steady_distance", s.steady_distance);
   if (cfg.has("steady_from")) s.steady_from = cfg.non_negative("steady_from");
   const std::string source = cfg.choice("position_source", {"auto", "frames", "observable"}, "auto");
   s.source = source == "frames" ? TracerPathSource::Frames : source == "observable" ? TracerPathSource::Observable : TracerPathSource::Auto;
   s.density_map = cfg.boolean("density_map", true);
+  for (const char* key : {"bath_species", "bin_width", "dz_bin", "rho_bin", "on_axis_radius", "wake_threshold", "order_axis"})
+    cfg.reject_unless(s.density_map, key, "with density_map false (it shapes the density map)");
+  cfg.reject_unless(!(cfg.has("dz_bin") && cfg.has("rho_bin")), "bin_width", "with both dz_bin and rho_bin given (it is their default)");
+  s.bath_species = cfg.string("bath_species", "");
   const double bin = cfg.positive("bin_width", 0.25);
   s.dz_bin = cfg.positive("dz_bin", bin);
   s.rho_bin = cfg.positive("rho_bin", bin);
@@ -135,8 +159,16 @@ void resolve_active_defaults(ActiveMicrorheologySettings& s, const SpeciesTable&
   } else {
     details["beta_force_source"] = "configuration";
   }
-  if (!(s.beta_force > 0))
-    throw InputError(config_file, "beta_force", "expected the force: 'beta_force', 'force' (with kT) or 'pe', or a trajectory whose run parameters give tracer.pe > 0");
+  if (!(s.beta_force >= 0))
+    throw InputError(config_file, "beta_force", "expected the force: 'beta_force', 'force' (with kT) or 'pe', or a trajectory whose run parameters give tracer.pe");
+  if (s.beta_force == 0.0) {
+    // Pe = 0: a passive reference run. Nothing drifts, so there is no transient to wait for.
+    if (s.steady_distance_given)
+      throw InputError(config_file, "steady_distance", "has no effect at zero force (Pe = 0): the tracer does not drift; "
+                                                       "the steady part is the whole run unless steady_from is given");
+    if (!s.steady_from) s.steady_from = 0.0;
+    details["steady_part"] = "the whole run from steady_from (zero force: no transient)";
+  }
   if (std::isnan(s.D_s)) {
     const Vec3 D = tracer->D_trans;
     if (!sphere || !(D.minCoeff() > 0) || D.maxCoeff() != D.minCoeff())
@@ -157,13 +189,14 @@ SteadyVelocity steady_velocity(const std::vector<double>& time, const std::vecto
   for (std::size_t k = 0; k < n; ++k)
     if (steady_from ? time[k] >= *steady_from : displacement[k] >= steady_distance) { first = k; break; }
   if (first == n) return v;
-  const LinearFit fit = fit_range(time, displacement, first, n);
+  const Drift d = end_to_end_drift(time, displacement, first, n - 1);
   v.first = first;
   v.points = n - first;
   v.t_start = time[first];
   v.t_end = time[n - 1];
-  v.velocity = fit.slope;
-  v.velocity_error = fit.slope_error;
+  v.displacement = d.rise;
+  v.velocity = d.slope;
+  v.velocity_error = d.error;
   return v;
 }
 
@@ -172,7 +205,7 @@ ActiveMicrorheology::ActiveMicrorheology(ActiveMicrorheologySettings settings, s
   if (s_.species.empty()) throw InputError(config_file_, "species", "expected the tracer species");
   axis_ = box_axis_of(s_.direction, sign_);
   if (axis_ < 0) throw InputError(config_file_, "direction", "expected a direction along a box axis");
-  if (!(s_.beta_force > 0)) throw InputError(config_file_, "beta_force", "expected a positive beta_force");
+  if (!(s_.beta_force >= 0)) throw InputError(config_file_, "beta_force", "expected a beta_force >= 0");
   if (!(s_.D_s > 0)) throw InputError(config_file_, "D_s", "expected a positive D_s");
 }
 
@@ -198,15 +231,19 @@ ActiveMicrorheology::PathSeries ActiveMicrorheology::tracer_path(const Trajector
 }
 
 void ActiveMicrorheology::add_velocity_samples(const PathSeries& p, const SteadyVelocity& v) {
+  // A sample is (displacement, elapsed time), so that pooling sums both: Σ Δz / Σ Δt.
   if (replicas_ > 1) {
-    velocity_samples_.add({v.velocity});
+    velocity_samples_.add({v.displacement, v.duration()});
     return;
   }
-  // A single replica: consecutive blocks of the steady part stand in for replicas (spec 50 §0).
-  const std::size_t blocks = std::max<std::size_t>(1, std::min(s_.single_replica_blocks, v.points / 3));
+  // A single replica: consecutive blocks of the steady part stand in for replicas (spec 50 §0); they
+  // share their end points, so together they span the whole steady part.
+  const std::size_t increments = v.points - 1;
+  const std::size_t blocks = std::max<std::size_t>(1, std::min(s_.single_replica_blocks, increments / 2));
   for (std::size_t b = 0; b < blocks; ++b) {
-    const std::size_t a = v.first + b * v.points / blocks, e = v.first + (b + 1) * v.points / blocks;
-    velocity_samples_.add({fit_range(p.time, p.displacement, a, e).slope});
+    const std::size_t a = v.first + b * increments / blocks, e = v.first + (b + 1) * increments / blocks;
+    const Drift d = end_to_end_drift(p.time, p.displacement, a, e);
+    velocity_samples_.add({d.rise, d.run});
   }
 }
 
@@ -330,10 +367,12 @@ ActiveResult ActiveMicrorheology::compute() const {
   r.D_s = s_.D_s;
   r.velocity_samples = velocity_samples_.count();
   std::vector<double> v;
-  for (const auto& smp : velocity_samples_.samples()) v.push_back(smp[0]);
-  r.velocity = mean_and_error(v);
+  for (const auto& smp : velocity_samples_.samples()) v.push_back(smp[0] / smp[1]);
+  r.replica_velocity = mean_and_error(v);
+  r.velocity_scatter = r.replica_velocity.error * std::sqrt(static_cast<double>(v.size()));
+  r.velocity = jackknife(velocity_samples_, [](const std::vector<double>& m) { return m[0] / m[1]; });
   const double drive = s_.D_s * s_.beta_force;  // the free velocity D_s βF
-  r.gamma_ratio = jackknife(velocity_samples_, [drive](const std::vector<double>& m) { return drive / m[0]; });
+  if (drive > 0.0) r.gamma_ratio = jackknife(velocity_samples_, [drive](const std::vector<double>& m) { return drive * m[1] / m[0]; });
 
   r.has_map = map_samples_ > 0;
   if (!r.has_map) return r;

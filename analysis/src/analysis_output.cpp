@@ -110,9 +110,10 @@ std::string csv_field(const std::string& s) {
   return out + "\"";
 }
 
-void write_table_csv(const Table& t, const std::string& path) {
+void write_table_csv(const Table& t, const std::string& path, const nlohmann::json& window) {
   std::ofstream f(path);
   if (!f) throw RuntimeFailure("cannot write " + path);
+  if (!window.is_null()) f << "# window: " << window.dump() << "\n";
   f << "# " << t.definition << "\n";
   for (const auto& c : t.columns) f << "# " << c.name << " [" << c.units << "]: " << c.definition << "\n";
   for (std::size_t k = 0; k < t.columns.size(); ++k) f << (k ? "," : "") << csv_field(t.columns[k].name);
@@ -151,6 +152,7 @@ void AnalysisOutput::write(bool csv) const {
     string_attribute(f, "git_revision", kGitRevision);
     string_attribute(f, "created_utc", provenance_.value("created_utc", std::string()));
     string_attribute(f, "inputs", provenance_.value("inputs", nlohmann::json::array()).dump());
+    if (!window_.is_null()) string_attribute(f, "window", window_.dump());
     string_dataset(f, "parameters", parameters_.dump(2));
     string_dataset(f, "provenance", provenance_.dump(2));
     std::set<std::string> names;
@@ -179,7 +181,7 @@ void AnalysisOutput::write(bool csv) const {
   if (csv) {
     for (const auto& t : tables_) {
       outputs.emplace_back(csv_path(t.name));
-      write_table_csv(t, outputs.back().partial_path());
+      write_table_csv(t, outputs.back().partial_path(), window_);
     }
     if (!scalars_.empty()) {
       outputs.emplace_back(csv_path("scalars"));

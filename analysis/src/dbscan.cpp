@@ -6,6 +6,8 @@
 #include <limits>
 #include <set>
 
+#include "anisodyn/analysis/frame_window.hpp"
+#include "anisodyn/analysis/pair_search.hpp"
 #include "anisodyn/core/error.hpp"
 
 namespace anisodyn::analysis {
@@ -14,49 +16,44 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kUnvisited = -2;
 
-/// Points binned in square cells of side ≥ eps, so every neighbour within eps of a point lies in
-/// its cell or one of the 8 around it.
-class GridIndex {
- public:
-  GridIndex(const std::vector<Point2>& p, double eps) : p_(p), eps2_(eps * eps) {
-    double x0 = p.front().x, x1 = x0, y0 = p.front().y, y1 = y0;
-    for (const auto& q : p) {
-      x0 = std::min(x0, q.x); x1 = std::max(x1, q.x);
-      y0 = std::min(y0, q.y); y1 = std::max(y1, q.y);
-    }
-    // a tiny Eps on a wide spread would make a huge sparse grid: cap the cell count at ~4 per point
-    const double cap = std::sqrt(4.0 * static_cast<double>(p.size())) + 1;
-    h_ = std::max({eps, (x1 - x0) / cap, (y1 - y0) / cap, 1e-300});
-    x0_ = x0;
-    y0_ = y0;
-    nx_ = static_cast<long>((x1 - x0) / h_) + 1;
-    ny_ = static_cast<long>((y1 - y0) / h_) + 1;
-    cells_.assign(static_cast<std::size_t>(nx_ * ny_), {});
-    for (std::size_t i = 0; i < p.size(); ++i) cells_[cell(ix(p[i].x), iy(p[i].y))].push_back(i);
-  }
-
-  /// Indices of the points within eps of point i, i itself included.
-  void region(std::size_t i, std::vector<std::size_t>& out) const {
-    out.clear();
-    const long cx = ix(p_[i].x), cy = iy(p_[i].y);
-    for (long a = std::max(0L, cx - 1); a <= std::min(nx_ - 1, cx + 1); ++a)
-      for (long b = std::max(0L, cy - 1); b <= std::min(ny_ - 1, cy + 1); ++b)
-        for (std::size_t j : cells_[cell(a, b)]) {
-          const double dx = p_[j].x - p_[i].x, dy = p_[j].y - p_[i].y;
-          if (dx * dx + dy * dy <= eps2_) out.push_back(j);
-        }
-  }
-
- private:
-  long ix(double x) const { return std::min(nx_ - 1, static_cast<long>((x - x0_) / h_)); }
-  long iy(double y) const { return std::min(ny_ - 1, static_cast<long>((y - y0_) / h_)); }
-  std::size_t cell(long a, long b) const { return static_cast<std::size_t>(a * ny_ + b); }
-
-  const std::vector<Point2>& p_;
-  double eps2_, h_ = 1, x0_ = 0, y0_ = 0;
-  long nx_ = 1, ny_ = 1;
-  std::vector<std::vector<std::size_t>> cells_;
+/// The Eps-neighbourhood of every point (the point itself not listed), as compressed rows.
+struct Neighbourhoods {
+  std::vector<std::size_t> first, list;  // the neighbours of i are list[first[i] … first[i + 1] − 1]
+  std::size_t size(std::size_t i) const { return first[i + 1] - first[i]; }
+  auto begin(std::size_t i) const { return list.begin() + static_cast<std::ptrdiff_t>(first[i]); }
+  auto end(std::size_t i) const { return list.begin() + static_cast<std::ptrdiff_t>(first[i + 1]); }
 };
+
+/// Pairs |p − q| ≤ eps through the shared pair search (pair_search.hpp). The points lie in the
+/// z = 0 plane of a periodic box more than twice their spread plus Eps on each axis, so no periodic
+/// image comes within reach and the candidates are the open-boundary ones; the search reaches a
+/// little beyond Eps and the test itself is made on the given coordinates, as the definition reads.
+Neighbourhoods eps_neighbourhoods(const std::vector<Point2>& p, double eps) {
+  double x0 = p.front().x, x1 = x0, y0 = p.front().y, y1 = y0;
+  for (const auto& q : p) {
+    x0 = std::min(x0, q.x); x1 = std::max(x1, q.x);
+    y0 = std::min(y0, q.y); y1 = std::max(y1, q.y);
+  }
+  const double reach = eps * (1 + 1e-6), eps2 = eps * eps;
+  // a thin third axis keeps one layer of cells
+  const Vec3 box(2 * (x1 - x0 + reach), 2 * (y1 - y0 + reach), reach / 4);
+  std::vector<Vec3> r(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) r[i] = Vec3(p[i].x - x0, p[i].y - y0, 0.0);
+  const PairGrid grid(box, reach, p.size());
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  grid.for_each_pair(grid.sort(r), [&](std::size_t i, std::size_t j, const Vec3&, double) {
+    const double dx = p[j].x - p[i].x, dy = p[j].y - p[i].y;
+    if (dx * dx + dy * dy <= eps2) pairs.emplace_back(i, j);
+  });
+  Neighbourhoods n;
+  n.first.assign(p.size() + 1, 0);
+  for (const auto& [i, j] : pairs) { ++n.first[i + 1]; ++n.first[j + 1]; }
+  for (std::size_t i = 0; i < p.size(); ++i) n.first[i + 1] += n.first[i];
+  n.list.resize(n.first.back());
+  std::vector<std::size_t> next(n.first.begin(), n.first.end() - 1);
+  for (const auto& [i, j] : pairs) { n.list[next[i]++] = j; n.list[next[j]++] = i; }
+  return n;
+}
 
 }  // namespace
 
@@ -66,26 +63,26 @@ DbscanLabels dbscan(const std::vector<Point2>& points, double eps, std::size_t m
   DbscanLabels out;
   out.label.assign(points.size(), kUnvisited);
   if (points.empty()) return out;
-  const GridIndex index(points, eps);
-  std::vector<std::size_t> neighbours, seeds;
+  const Neighbourhoods near = eps_neighbourhoods(points, eps);
+  // N_Eps counts the point itself (as R's dbscan does)
+  auto is_core = [&](std::size_t i) { return near.size(i) + 1 >= min_pts; };
+  std::vector<std::size_t> seeds;
   for (std::size_t p = 0; p < points.size(); ++p) {
     if (out.label[p] != kUnvisited) continue;
-    index.region(p, neighbours);
-    if (neighbours.size() < min_pts) {
+    if (!is_core(p)) {
       out.label[p] = kDbscanNoise;  // may still become a border point of a later cluster
       continue;
     }
     const int c = out.clusters++;
     out.label[p] = c;
-    seeds = neighbours;
+    seeds.assign(near.begin(p), near.end(p));
     while (!seeds.empty()) {
       const std::size_t q = seeds.back();
       seeds.pop_back();
       if (out.label[q] == kDbscanNoise) out.label[q] = c;  // border point
       if (out.label[q] != kUnvisited) continue;
       out.label[q] = c;
-      index.region(q, neighbours);
-      if (neighbours.size() >= min_pts) seeds.insert(seeds.end(), neighbours.begin(), neighbours.end());
+      if (is_core(q)) seeds.insert(seeds.end(), near.begin(q), near.end(q));
     }
   }
   for (int l : out.label)
@@ -141,7 +138,7 @@ DbscanCalibrationSettings parse_dbscan_settings(io::ConfigNode& cfg) {
     for (double f : s.eps_factors)
       if (!(f > 0)) cfg.fail("eps_factors", "expected positive factors");
   }
-  s.t_min = cfg.number("t_min", -std::numeric_limits<double>::infinity());
+  refuse_frame_key(cfg, "t_min");
   return s;
 }
 
@@ -225,12 +222,11 @@ void DbscanCalibration::accumulate(const Trajectory& t, int species_index) {
   if (members.size() < 2) throw InputError(t.path, "", "fewer than two particles of the selected species");
   std::vector<Vec3> r(members.size());
   for (std::size_t f = 0; f < t.frames; ++f) {
-    if (t.time[f] < s_.t_min) continue;
     for (std::size_t m = 0; m < members.size(); ++m) r[m] = t.pos(f, members[m]);
     const std::vector<Point2> points = neighbour_separation_points(r, Box(t.box_edges(f)), s_);
     CalibrationConfiguration c;
     c.replica = replicas_seen_;
-    c.frame = f;
+    c.frame = t.file_frame(f);
     c.time = t.time[f];
     c.points = points.size();
     if (s_.eps) {

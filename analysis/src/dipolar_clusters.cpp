@@ -5,8 +5,8 @@
 #include <limits>
 #include <sstream>
 
+#include "anisodyn/analysis/pair_search.hpp"
 #include "anisodyn/core/error.hpp"
-#include "anisodyn/neighbors/cell_list.hpp"
 
 namespace anisodyn::analysis {
 
@@ -15,15 +15,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 /// Display rule of spec 50 §5.5: probabilities below this are left blank (written as NaN).
 constexpr double kBlankProbability = 1e-6;
 
-Vec3 wrapped(const Vec3& r, const Vec3& L) {
-  Vec3 w;
-  for (int a = 0; a < 3; ++a) {
-    w[a] = r[a] - std::floor(r[a] / L[a]) * L[a];
-    if (w[a] >= L[a]) w[a] -= L[a];  // floor() rounding for tiny negative inputs
-  }
-  return w;
-}
-
 std::string number_text(double v) {
   std::ostringstream o;
   o << v;
@@ -31,32 +22,6 @@ std::string number_text(double v) {
 }
 
 }  // namespace
-
-// ---- pair search --------------------------------------------------------------------------------
-
-std::vector<ClosePair> close_pairs(const std::vector<Vec3>& positions, const Box& box, double cutoff) {
-  std::vector<ClosePair> pairs;
-  if (positions.size() < 2 || !(cutoff > 0)) return pairs;
-  SpeciesGrid grid;
-  grid.configure(box, cutoff, positions.size());
-  std::vector<Vec3> w(positions.size());
-  for (std::size_t i = 0; i < positions.size(); ++i) {
-    w[i] = wrapped(positions[i], box.edges());
-    grid.insert(static_cast<std::int32_t>(i), w[i]);
-  }
-  const double c2 = cutoff * cutoff;
-  std::vector<ClosePair> found;
-  for (std::size_t i = 0; i < w.size(); ++i) {
-    found.clear();
-    grid.visit(box, w[i], cutoff, [&](std::int32_t j, const Vec3& d, double r2) {
-      if (static_cast<std::size_t>(j) > i && r2 < c2) found.push_back({i, static_cast<std::size_t>(j), d});
-      return false;
-    });
-    std::sort(found.begin(), found.end(), [](const ClosePair& a, const ClosePair& b) { return a.j < b.j; });
-    pairs.insert(pairs.end(), found.begin(), found.end());
-  }
-  return pairs;
-}
 
 // ---- E2 -----------------------------------------------------------------------------------------
 

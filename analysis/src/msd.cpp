@@ -28,6 +28,9 @@ MsdSettings parse_msd_settings(io::ConfigNode& cfg) {
   const std::string ref = cfg.choice("reference", {"axes", "director", "field", "vector", "particle_axis"}, "axes");
   if (ref == "director") s.reference = MsdReference::Director;
   if (ref == "particle_axis") s.reference = MsdReference::ParticleAxis;
+  cfg.reject_unless(ref == "field" || ref == "vector", "direction", "unless \"reference\" is \"field\" or \"vector\" (it is their direction)");
+  cfg.reject_unless(ref == "director" || ref == "particle_axis", "axis",
+                    "unless \"reference\" is \"director\" or \"particle_axis\" (it picks the body axis they use)");
   if (ref == "field" || ref == "vector") {
     s.reference = MsdReference::Vector;
     const Vec3 d = cfg.vec3("direction");
@@ -35,6 +38,9 @@ MsdSettings parse_msd_settings(io::ConfigNode& cfg) {
     s.direction = d.normalized();
   }
   s.axis = body_axis_index(cfg, "axis");
+  cfg.reject_unless(s.reference == MsdReference::Director, "director_species",
+                    "unless \"reference\" is \"director\" (it names the species whose director spheres use)");
+  s.director_species = cfg.string("director_species", "");
   if (s.reference == MsdReference::ParticleAxis && s.axis < 0) s.axis = 2;
   s.lags_per_decade = cfg.non_negative("lags_per_decade", s.lags_per_decade);
   s.max_origins = static_cast<std::size_t>(cfg.non_negative_integer("max_origins", 0));
@@ -73,6 +79,35 @@ Vec3 run_averaged_director(const Trajectory& t, const std::vector<std::size_t>& 
   axis = best;
   order = u.order;
   return u.director;
+}
+
+int director_species_of(const Trajectory& t, int analysed, const std::string& director_species, const std::string& config_file) {
+  const auto anisotropic = [&](int s) { return t.species_table[static_cast<std::size_t>(s)].shape.is_anisotropic(); };
+  if (analysed < 0 || anisotropic(analysed)) {
+    if (!director_species.empty())
+      throw InputError(config_file, "director_species",
+                       "no director_species for an anisotropic species: it is its own reference (director_species only serves spheres)");
+    return analysed;
+  }
+  if (!director_species.empty()) {
+    const int s = t.species_index(director_species, config_file, "director_species");
+    if (!anisotropic(s)) throw InputError(config_file, "director_species", "species '" + director_species + "' is a sphere: it has no director");
+    return s;
+  }
+  std::vector<int> candidates;
+  std::string names;
+  for (std::size_t s = 0; s < t.species_table.size(); ++s)
+    if (anisotropic(static_cast<int>(s))) {
+      candidates.push_back(static_cast<int>(s));
+      names += (names.empty() ? "" : ", ") + t.species_table[s].name;
+    }
+  if (candidates.empty())
+    throw InputError(config_file, "reference", "a director was requested for spheres but " + t.path +
+                                                   " has no anisotropic species to take it from; use \"reference\": \"axes\"");
+  if (candidates.size() > 1)
+    throw InputError(config_file, "director_species", t.path + " has several anisotropic species (" + names +
+                                                          "): name the one whose director the spheres use");
+  return candidates.front();
 }
 
 MsdAnalysis::MsdAnalysis(MsdSettings settings, std::size_t replicas, std::string config_file)
@@ -126,7 +161,9 @@ void MsdAnalysis::accumulate(const Trajectory& t, int species_index) {
   if (s_.reference == MsdReference::Director) {
     int axis = s_.axis;
     double order = 0;
-    e = run_averaged_director(t, members, axis, order);
+    const int source = director_species_of(t, species_index, s_.director_species, config_file_);
+    e = run_averaged_director(t, source == species_index ? members : t.members(source), axis, order);
+    if (source != species_index) meta_.director_species = t.species_table[static_cast<std::size_t>(source)].name;
     if (!(order > s_.director_threshold))
       throw InputError(config_file_, "reference",
                        "a director was requested but " + t.path + " has no orientational order: the largest order parameter " +
@@ -281,6 +318,17 @@ MsdResult MsdAnalysis::compute() const {
     r.components[k].diffusion = window.size() >= 2 ? jackknife(samples_, slope_over_window) : Estimate{};
   }
   return r;
+}
+
+CurveSamples MsdAnalysis::samples_of(const std::string& name) const {
+  const auto it = std::find(names_.begin(), names_.end(), name);
+  if (it == names_.end()) throw RuntimeFailure("no MSD component " + name);
+  // a sample holds (component, moment) blocks of nc values; the MSD is moment 0
+  const std::size_t nc = grid_.classes.size(), first = 2 * static_cast<std::size_t>(it - names_.begin()) * nc;
+  CurveSamples out;
+  for (const auto& s : samples_.samples())
+    out.add(std::vector<double>(s.begin() + static_cast<std::ptrdiff_t>(first), s.begin() + static_cast<std::ptrdiff_t>(first + nc)));
+  return out;
 }
 
 }  // namespace anisodyn::analysis

@@ -5,7 +5,8 @@
 #include <limits>
 #include <sstream>
 
-#include "anisodyn/analysis/dipolar_clusters.hpp"  // close_pairs
+#include "anisodyn/analysis/frame_window.hpp"
+#include "anisodyn/analysis/pair_search.hpp"
 #include "anisodyn/analysis/union_find.hpp"
 #include "anisodyn/core/error.hpp"
 #include "anisodyn/system/order.hpp"
@@ -54,7 +55,7 @@ NematicClusterSettings parse_nematic_cluster_settings(io::ConfigNode& cfg) {
   s.k_par = cfg.positive("K_par");
   s.k_perp = cfg.positive("K_perp");
   s.cos_bins = static_cast<std::size_t>(cfg.positive_integer("cos_bins", 20));
-  s.t_min = cfg.number("t_min", -std::numeric_limits<double>::infinity());
+  refuse_frame_key(cfg, "t_min");
   const SettingsProblem p = settings_problem(s);
   if (!p.key.empty()) cfg.fail(p.key, p.problem);
   return s;
@@ -206,7 +207,6 @@ void NematicClusterAnalysis::accumulate(const Trajectory& t, int species_index) 
   std::vector<Sample> per_config;
   std::vector<Vec3> r(members.size()), e(members.size());
   for (std::size_t f = 0; f < t.frames; ++f) {
-    if (t.time[f] < s_.t_min) continue;
     for (std::size_t m = 0; m < members.size(); ++m) {
       r[m] = t.pos(f, members[m]);
       e[m] = t.axis(f, members[m], s_.axis);
@@ -219,7 +219,7 @@ void NematicClusterAnalysis::accumulate(const Trajectory& t, int species_index) 
 
     NematicConfiguration nc;
     nc.replica = replicas_seen_;
-    nc.frame = f;
+    nc.frame = t.file_frame(f);
     nc.time = t.time[f];
     nc.clusters = c.size.size();
     nc.particles = members.size();
@@ -234,8 +234,6 @@ void NematicClusterAnalysis::accumulate(const Trajectory& t, int species_index) 
     }
     configs_.push_back(std::move(nc));
   }
-  if (per_config.empty())
-    throw InputError(config_file_, "t_min", "no frame of " + t.path + " at or after t_min = " + text(s_.t_min));
   // one sample per replica; with a single replica, ≤ 10 contiguous blocks of configurations (spec 50 §0)
   const std::size_t blocks = replicas_ > 1 ? 1 : std::min<std::size_t>(10, per_config.size());
   for (std::size_t b = 0; b < blocks; ++b) {

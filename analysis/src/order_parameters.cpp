@@ -274,6 +274,10 @@ OrderStageSettings parse_order_settings(io::ConfigNode& cfg) {
       if (o != "U" && o != "B2" && o != "S_rod" && o != "S_cube")
         cfg.fail("observables", "expected a list of \"U\", \"B2\", \"S_rod\", \"S_cube\" (got \"" + o + "\")");
   }
+  const auto wanted = [&](const char* o) { return std::find(s.observables.begin(), s.observables.end(), o) != s.observables.end(); };
+  cfg.reject_unless(wanted("S_rod"), "rod_axis", "without S_rod in observables");
+  for (const char* key : {"field_direction", "chain_threshold"})
+    cfg.reject_unless(wanted("S_cube"), key, "without S_cube in observables (it shapes the cube order)");
   s.order.main_axis = parse_body_axis(cfg, "main_axis", "auto", true);
   s.order.rod_axis = parse_body_axis(cfg, "rod_axis", "L", false);
   const Vec3 e = cfg.vec3("field_direction", Vec3::UnitZ());

@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
+#include "anisodyn/analysis/frame_window.hpp"
 #include "anisodyn/analysis/order_parameters.hpp"
+#include "anisodyn/analysis/pair_search.hpp"
 #include "anisodyn/analysis/replica_statistics.hpp"
 #include "anisodyn/core/box.hpp"
 #include "anisodyn/core/error.hpp"
@@ -15,17 +18,6 @@ namespace anisodyn::analysis {
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-/// Coordinates of a set of particles wrapped into [0, L), contiguous x, y, z.
-std::vector<double> wrapped_coordinates(const Trajectory& t, std::size_t f, const std::vector<std::size_t>& members, const Vec3& L) {
-  std::vector<double> out;
-  out.reserve(3 * members.size());
-  for (std::size_t i : members) {
-    const Vec3 r = t.pos(f, i);
-    for (int a = 0; a < 3; ++a) out.push_back(r[a] - L[a] * std::floor(r[a] / L[a]));
-  }
-  return out;
-}
-
 /// Histogram geometry of one frame: bins of width dr up to r_cut; the cylinder (radius R) and
 /// slab (half height h) about the unit vector e; directional = false skips g_∥ and g_⊥.
 struct PairGeometry {
@@ -34,57 +26,32 @@ struct PairGeometry {
   bool directional;
 };
 
-/// Adds the pair counts Σ_i Σ_j (j ≠ i) of one frame to cg, cpar, cperp. Like pairs (same = true)
-/// are visited once and counted twice. Coordinates are wrapped, so a separation lies in (−L, L)
-/// and one shift gives the minimum image.
-void count_pairs(const std::vector<double>& a, const std::vector<double>& b, bool same, const PairGeometry& g,
-                 std::vector<double>& cg, std::vector<double>& cpar, std::vector<double>& cperp) {
-  const std::size_t na = a.size() / 3, nb_particles = b.size() / 3, nb = cg.size();
-  const double weight = same ? 2.0 : 1.0;
-  const double lx = g.L.x(), ly = g.L.y(), lz = g.L.z(), hx = lx / 2, hy = ly / 2, hz = lz / 2;
+/// Adds the pair counts Σ_i Σ_j (j ≠ i) of one frame to cg, cpar, cperp: the pairs of a (b null:
+/// like pairs, met once and counted twice) or of a × b, found by the cell lists of pair_search.hpp
+/// at the minimum image.
+void count_pairs(const std::vector<Vec3>& a, const std::vector<Vec3>* b, const PairGeometry& g, std::vector<double>& cg,
+                 std::vector<double>& cpar, std::vector<double>& cperp) {
+  const std::size_t nb = cg.size();
+  const double weight = b ? 1.0 : 2.0;
   const double r_cut2 = g.r_cut * g.r_cut;
   const double reach = g.directional ? std::max(g.R, g.h) : 0.0;
   const double any2 = r_cut2 + reach * reach;  // beyond this no histogram can receive the pair
   const double inv_dr = 1.0 / g.dr;
-  // branch-free (random separations would defeat branch prediction)
-  auto wrap = [](double d, double l, double half) { return d - l * static_cast<double>(d > half) + l * static_cast<double>(d < -half); };
-  for (std::size_t i = 0; i < na; ++i) {
-    const double xi = a[3 * i], yi = a[3 * i + 1], zi = a[3 * i + 2];
-    for (std::size_t j = same ? i + 1 : 0; j < nb_particles; ++j) {
-      const double dx = wrap(b[3 * j] - xi, lx, hx), dy = wrap(b[3 * j + 1] - yi, ly, hy), dz = wrap(b[3 * j + 2] - zi, lz, hz);
-      const double r2 = dx * dx + dy * dy + dz * dz;
-      if (r2 >= any2) continue;
-      if (r2 < r_cut2) cg[std::min(nb - 1, static_cast<std::size_t>(std::sqrt(r2) * inv_dr))] += weight;
-      if (!g.directional) continue;
-      const double x = std::abs(dx * g.e.x() + dy * g.e.y() + dz * g.e.z());
-      const double perp = std::sqrt(std::max(r2 - x * x, 0.0));
-      if (perp < g.R && x < g.r_cut) cpar[std::min(nb - 1, static_cast<std::size_t>(x * inv_dr))] += weight;
-      if (x < g.h && perp < g.r_cut) cperp[std::min(nb - 1, static_cast<std::size_t>(perp * inv_dr))] += weight;
-    }
-  }
+  auto count = [&](std::size_t, std::size_t, const Vec3& d, double r2) {
+    if (r2 >= any2) return;
+    if (r2 < r_cut2) cg[std::min(nb - 1, static_cast<std::size_t>(std::sqrt(r2) * inv_dr))] += weight;
+    if (!g.directional) return;
+    const double x = std::abs(d.x() * g.e.x() + d.y() * g.e.y() + d.z() * g.e.z());
+    const double perp = std::sqrt(std::max(r2 - x * x, 0.0));
+    if (perp < g.R && x < g.r_cut) cpar[std::min(nb - 1, static_cast<std::size_t>(x * inv_dr))] += weight;
+    if (x < g.h && perp < g.r_cut) cperp[std::min(nb - 1, static_cast<std::size_t>(perp * inv_dr))] += weight;
+  };
+  // The search reaches a hair beyond √any2; the test above decides, as in the O(N²) loop before it.
+  const PairGrid grid(g.L, std::sqrt(any2) * (1 + 1e-9), a.size() + (b ? b->size() : 0));
+  if (b) grid.for_each_pair(grid.sort(a), grid.sort(*b), count);
+  else grid.for_each_pair(grid.sort(a), count);
 }
 }  // namespace
-
-std::vector<std::size_t> FrameSelection::indices(std::size_t frames, const std::string& config_file) const {
-  if (first >= frames)
-    throw InputError(config_file, "frames.first", "frame " + std::to_string(first) + " is beyond the trajectory's " + std::to_string(frames) + " frames");
-  const std::size_t end = std::min(last, frames - 1);
-  if (end < first) throw InputError(config_file, "frames.last", "expected last ≥ first");
-  std::vector<std::size_t> out;
-  for (std::size_t f = first; f <= end; f += stride) out.push_back(f);
-  return out;
-}
-
-FrameSelection parse_frame_selection(io::ConfigNode& cfg, const std::string& key) {
-  FrameSelection s;
-  if (auto f = cfg.optional_object(key)) {
-    s.first = static_cast<std::size_t>(f->non_negative_integer("first", 0));
-    if (f->has("last")) s.last = static_cast<std::size_t>(f->non_negative_integer("last"));
-    s.stride = static_cast<std::size_t>(f->positive_integer("stride", 1));
-    if (s.last < s.first) f->fail("last", "expected last ≥ first");
-  }
-  return s;
-}
 
 PairStructureSettings parse_structure_settings(io::ConfigNode& cfg) {
   PairStructureSettings s;
@@ -101,6 +68,11 @@ PairStructureSettings parse_structure_settings(io::ConfigNode& cfg) {
   if (cfg.has("r_max")) s.r_max = cfg.positive("r_max");
   const std::string ref = cfg.choice("reference", {"field", "director", "none"}, "field");
   s.reference = ref == "director" ? PairReference::Director : ref == "none" ? PairReference::None : PairReference::Field;
+  cfg.reject_unless(ref == "field", "direction", "unless \"reference\" is \"field\" (it is the field's direction)");
+  for (const char* key : {"axis", "director_species"})
+    cfg.reject_unless(ref == "director", key, "unless \"reference\" is \"director\" (it chooses the director)");
+  for (const char* key : {"cylinder_radius", "slab_half_height"})
+    cfg.reject_unless(ref != "none", key, "with \"reference\" \"none\" (it shapes g_par and g_perp)");
   const Vec3 d = cfg.vec3("direction", Vec3::UnitZ());
   if (!(d.norm() > 0)) cfg.fail("direction", "expected a non-zero direction vector");
   s.direction = d.normalized();
@@ -109,7 +81,7 @@ PairStructureSettings parse_structure_settings(io::ConfigNode& cfg) {
   s.cylinder_radius = cfg.positive("cylinder_radius", s.cylinder_radius);
   s.slab_half_height = cfg.positive("slab_half_height", s.slab_half_height);
   s.slab_bins = static_cast<std::size_t>(cfg.positive_integer("slab_bins", 50));
-  s.frames = parse_frame_selection(cfg, "frames");
+  refuse_frame_key(cfg, "frames");
   return s;
 }
 
@@ -193,7 +165,8 @@ std::vector<Vec3> PairStructureAnalysis::frame_reference(const Trajectory& t, co
 void PairStructureAnalysis::accumulate(const Trajectory& t) {
   if (t.position.empty()) throw RuntimeFailure("PairStructureAnalysis needs positions");
   if (pair_index_.empty()) resolve_species(t);
-  const std::vector<std::size_t> frames = s_.frames.indices(t.frames, config_file_);
+  std::vector<std::size_t> frames(t.frames);  // every loaded frame: the window chose them
+  std::iota(frames.begin(), frames.end(), std::size_t{0});
   const std::vector<Vec3> ref = frame_reference(t, frames);
   frames_per_replica_ = frames.size();
   const std::size_t nb = bins_, ns = s_.slab_bins, np = pair_index_.size();
@@ -226,9 +199,9 @@ void PairStructureAnalysis::accumulate(const Trajectory& t) {
       const auto& A = members_a[p];
       const auto& B = members_b[p];
       const PairGeometry geometry{L, e, dr, r_max, R, h, s_.reference != PairReference::None};
-      const std::vector<double> ca = wrapped_coordinates(t, f, A, L);
-      const std::vector<double> cb = same ? std::vector<double>{} : wrapped_coordinates(t, f, B, L);
-      count_pairs(ca, same ? ca : cb, same, geometry, cg, cpar, cperp);
+      const std::vector<Vec3> ra = frame_positions(t, f, A);
+      const std::vector<Vec3> rb = same ? std::vector<Vec3>{} : frame_positions(t, f, B);
+      count_pairs(ra, same ? nullptr : &rb, geometry, cg, cpar, cperp);
       const double na = static_cast<double>(A.size()), rho = static_cast<double>(B.size()) / V;
       rho_b_sum_[p] += rho;
       double* g = &out[p * 3 * nb];

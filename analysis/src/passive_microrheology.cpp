@@ -145,7 +145,7 @@ double resolve_tracer_radius(const PassiveMicrorheologySettings& settings, const
 }
 
 PassiveMicrorheology::PassiveMicrorheology(PassiveMicrorheologySettings settings, std::size_t replicas, std::string config_file)
-    : s_(std::move(settings)), replicas_(replicas), config_file_(std::move(config_file)), msd_(s_.msd, replicas, config_file_) {
+    : s_(std::move(settings)), config_file_(std::move(config_file)), msd_(s_.msd, replicas, config_file_) {
   if (s_.species.empty()) throw InputError(config_file_, "species", "expected the tracer species");
   if (!(s_.radius > 0)) throw InputError(config_file_, "radius", "expected a positive tracer radius");
   if (!(s_.kT > 0)) throw InputError(config_file_, "kT", "expected a positive k_BT");
@@ -155,33 +155,8 @@ void PassiveMicrorheology::accumulate(const Trajectory& t) {
   const int species = t.species_index(s_.species, config_file_, "species");
   const std::vector<std::size_t> tracers = t.members(species);
   if (tracers.empty()) throw InputError(config_file_, "species", "tracer species '" + s_.species + "' has no particles in " + t.path);
-  if (seen_ == 0) {
-    grid_ = make_lag_grid(t.time, s_.msd.lags_per_decade, s_.msd.max_origins);
-    tracers_ = tracers.size();
-  }
+  if (tracers_ == 0) tracers_ = tracers.size();
   msd_.accumulate(t, species);
-  add_samples(t, tracers);
-  ++seen_;
-}
-
-void PassiveMicrorheology::add_samples(const Trajectory& t, const std::vector<std::size_t>& tracers) {
-  // The same frame pairs as MsdAnalysis, so the sample mean is its MSD; one replica is split into
-  // blocks of time origins as MsdAnalysis does for its errors.
-  const std::size_t nc = grid_.classes.size(), F = t.frames;
-  const std::size_t blocks = replicas_ == 1 ? std::max<std::size_t>(s_.msd.single_replica_blocks, 1) : 1;
-  std::vector<std::vector<double>> sums(blocks, std::vector<double>(nc, 0.0)), counts = sums;
-  for (std::size_t c = 0; c < nc; ++c)
-    for (const auto& [i0, j0] : grid_.classes[c].pairs) {
-      const std::size_t b = std::min(blocks - 1, static_cast<std::size_t>(i0) * blocks / F);
-      for (std::size_t i : tracers) sums[b][c] += (t.pos(j0, i) - t.pos(i0, i)).squaredNorm();
-      counts[b][c] += static_cast<double>(tracers.size());
-    }
-  for (std::size_t b = 0; b < blocks; ++b) {
-    std::vector<double> curve(nc, kNaN);
-    for (std::size_t c = 0; c < nc; ++c)
-      if (counts[b][c] > 0) curve[c] = sums[b][c] / counts[b][c];
-    samples_.add(std::move(curve));
-  }
 }
 
 PassiveResult PassiveMicrorheology::compute() const {
@@ -198,7 +173,8 @@ PassiveResult PassiveMicrorheology::compute() const {
   r.fit_window_automatic = m.fit_window_automatic;
   r.radius = s_.radius;
   r.kT = s_.kT;
-  r.samples = samples_.count();
+  const CurveSamples samples = msd_.samples_of("tot");
+  r.samples = samples.count();
   r.tracers = tracers_;
   const std::size_t n = r.time.size();
   const auto window = window_indices(r.time, r.fit_t_min, r.fit_t_max);
@@ -220,7 +196,7 @@ PassiveResult PassiveMicrorheology::compute() const {
     evans = evans_moduli(evans_t, evans_msd, s_.radius, s_.kT, long_time_diffusion(r.time, msd, window), omega);
   };
   moduli_of(r.msd, r.mason, r.mason2, r.evans);
-  const auto stacked = jackknife_curve(samples_, [&](const std::vector<double>& msd) {
+  const auto stacked = jackknife_curve(samples, [&](const std::vector<double>& msd) {
     Moduli a, a2, b;
     moduli_of(msd, a, a2, b);
     std::vector<double> out;

@@ -176,6 +176,8 @@ ResponseSettings parse_response_settings(io::ConfigNode& cfg) {
   ResponseSettings s;
   s.species = cfg.string("species", "");
   s.signal = cfg.choice("signal", {"B2", "U_L", "U_W", "U_T", "S_cube"}, "B2");
+  cfg.reject_unless(s.signal == "B2", "main_axis", "unless \"signal\" is \"B2\" (it is the axis of B_2)");
+  cfg.reject_unless(s.signal == "S_cube", "field_direction", "unless \"signal\" is \"S_cube\" (it is the cube order's reference)");
   s.order.main_axis = parse_body_axis(cfg, "main_axis", "auto", true);
   s.field_given = cfg.has("field_direction");
   if (s.field_given) {

@@ -17,13 +17,18 @@ void StageRun::report_replica(std::size_t k, const std::string& path) const {
 std::vector<double> StageRun::each_replica(const TrajectoryNeeds& needs,
                                            const std::function<void(const Trajectory&, std::size_t)>& fn,
                                            double time_tolerance) const {
-  return for_each_replica(
-      inputs, needs,
+  TrajectoryNeeds windowed = needs;
+  windowed.window = window;
+  FrameSelection selected;
+  auto grid = for_each_replica(
+      inputs, windowed,
       [&](const Trajectory& t, std::size_t k) {
         report_replica(k, t.path);
         fn(t, k);
       },
-      time_tolerance);
+      time_tolerance, &selected);
+  if (window.given) out.set_window(window.record(selected.frames, selected.grid));
+  return grid;
 }
 
 void StageRun::fail(const std::string& key, const std::string& problem) const {
@@ -40,10 +45,11 @@ int run_analysis_stage(int argc, char** argv, const io::ToolInfo& info, const st
     else
       cfg.mark_used("inputs");
     const bool csv = cfg.boolean("csv", true);
+    const FrameWindow window = parse_frame_window(cfg);
     const std::vector<std::string> inputs = expand_inputs(patterns, opt.inputs.empty() ? opt.config_name() : "--input");
     io::check_output_writable(opt.output);
     AnalysisOutput out(opt.output, opt.config, nlohmann::json::object());
-    StageRun run{opt, cfg, inputs, out};
+    StageRun run{opt, cfg, inputs, out, window};
     body(run);
     out.set_provenance(io::make_provenance(info.name, opt.argv, inputs));
     out.write(csv);

@@ -1,5 +1,6 @@
 #include "anisodyn/analysis/van_hove.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -50,6 +51,10 @@ VanHoveSettings parse_van_hove_settings(io::ConfigNode& cfg) {
       if (c != "tot" && c != "x" && c != "y" && c != "z" && c != "par" && c != "perp")
         cfg.fail("components", "expected components from tot, x, y, z, par, perp");
   }
+  const bool projected = std::any_of(s.components.begin(), s.components.end(), [](const std::string& c) { return c == "par" || c == "perp"; });
+  cfg.reject_unless(projected, "direction", "without par or perp in components (it is their reference direction)");
+  for (const char* key : {"angular_bin_width", "angular_dimension"})
+    cfg.reject_unless(cfg.has("angular_axes"), key, "without angular_axes (it shapes the angular van Hove function)");
   if (cfg.has("direction")) {
     const Vec3 d = cfg.vec3("direction");
     if (!(d.norm() > 0)) cfg.fail("direction", "expected a non-zero vector");

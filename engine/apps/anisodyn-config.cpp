@@ -26,13 +26,15 @@ int main(int argc, char** argv) {
     if (!opt.inputs.empty()) existing = io::H5mdReader(opt.inputs[0]).read_frame(-1);
 
     const std::uint64_t replica = opt.replica.value_or(0);
-    State state = build_configuration(cfg, existing, seed, replica);
+    nlohmann::json diffusion_origins;
+    State state = build_configuration(cfg, existing, seed, replica, &diffusion_origins);
 
     nlohmann::json parameters = opt.config;
     parameters["seed"] = seed;
     if (replica) parameters["replica"] = replica;
-    io::H5mdWriter writer(opt.output, {"anisodyn", "", "anisodyn user", parameters,
-                                       io::make_provenance(info.name, opt.argv, opt.inputs), state.species});
+    nlohmann::json provenance = io::make_provenance(info.name, opt.argv, opt.inputs);
+    provenance["diffusion_sources"] = diffusion_origins;  // which species file (and entry) each D came from
+    io::H5mdWriter writer(opt.output, {"anisodyn", "", "anisodyn user", parameters, provenance, state.species});
     writer.append_frame(state);
     writer.commit();
     if (!opt.quiet)

@@ -62,8 +62,9 @@ int main(int argc, char** argv) {
       if (std::string(e.what()).rfind(opt.config_name(), 0) == 0) throw;
       throw InputError(input, "/particles/all", e.what());
     }
-    const io::H5mdHeader header{"anisodyn", "", "anisodyn user", parameters,
-                                io::make_provenance(info.name, opt.argv, opt.inputs), state.species};
+    nlohmann::json provenance = io::make_provenance(info.name, opt.argv, opt.inputs);
+    if (!protocol.diffusion_origins.empty()) provenance["diffusion_sources"] = protocol.diffusion_origins;
+    const io::H5mdHeader header{"anisodyn", "", "anisodyn user", parameters, provenance, state.species};
     std::optional<io::H5mdWriter> out;
     if (resuming) {
       runner->restore(engine_state.at("runner"));

@@ -33,6 +33,14 @@ nlohmann::json to_json(const Mat6& m) {
   return rows;
 }
 
+/// The default construction keeps its original wording, so that its species files do not change.
+std::string method_of(const HydroSpeciesJob& job) {
+  std::string method = "shell model, RPY mobility with overlap correction, resistance about the centre of diffusion "
+                       "extrapolated linearly to zero bead radius";
+  if (job.construction != &shell_beads) method += "; shell construction " + job.construction_name;
+  return method;
+}
+
 nlohmann::json species_entry(const HydroSpeciesJob& job, const DiffusionTensorResult& r) {
   nlohmann::json shells = nlohmann::json::array();
   for (const auto& s : r.shells)
@@ -47,8 +55,7 @@ nlohmann::json species_entry(const HydroSpeciesJob& job, const DiffusionTensorRe
           {"D_trans", to_json(r.D_trans())},
           {"D_rot", to_json(r.D_rot())},
           {"hydro",
-           {{"method", "shell model, RPY mobility with overlap correction, resistance about the centre of diffusion "
-                       "extrapolated linearly to zero bead radius"},
+           {{"method", method_of(job)},
             {"diffusion_tensor", to_json(r.diffusion)},
             {"resistance_tensor", to_json(r.resistance)},
             {"centre_of_diffusion", to_json(r.centre_of_diffusion)},
@@ -68,8 +75,8 @@ void print_summary(const std::string& name, const DiffusionTensorResult& r) {
 
 int main(int argc, char** argv) {
   const io::ToolInfo info{"anisodyn-hydro", "infinite-dilution diffusion tensors of rigid particles from shell models",
-                          "Configuration keys: species[] {name, shape, shells | bead_radii}, shells {count, max_beads, "
-                          "size_ratio}, bead_radii, symmetry. The output is a species file: JSON, or HDF5 when it ends "
+                          "Configuration keys: species[] {name, shape, shells | bead_radii, construction}, shells {count, "
+                          "max_beads, size_ratio}, bead_radii, symmetry, construction (surface_grid | cell_centres). The output is a species file: JSON, or HDF5 when it ends "
                           "in .h5. Units: lengths in the shape's unit ℓ, D_trans in ℓ²/τ, D_rot in rad²/τ, with "
                           "τ = ηℓ³/k_BT. See docs/hydro.md."};
   return io::run_tool(argc, argv, info, [&](io::CommonOptions& opt) {
@@ -92,7 +99,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "%s: shell %zu/%zu  σ_b = %.4g  %zu beads  (mirror group %d, largest block %zu)  %.2f s\n",
                      job.name.c_str(), k + 1, total, s.sigma_b, s.beads, s.symmetry_order, s.largest_block, s.seconds);
       };
-      const DiffusionTensorResult r = compute_diffusion_tensor(job.shape, job.bead_radii, options, progress);
+      const DiffusionTensorResult r = compute_diffusion_tensor(job.shape, job.bead_radii, options, progress, job.construction);
       if (!opt.quiet) print_summary(job.name, r);
       species.push_back(species_entry(job, r));
     }

@@ -5,7 +5,10 @@ glob. Checks the output contract (architecture §4): HDF5 datasets with units an
 attributes, root attributes tool_version and inputs (paths with SHA-256 equal to hashlib's), CSV
 files beside the HDF5 file; and the bad-input contract: a missing dataset, frames out of order, a
 director requested for an isotropic box, mismatched replicas, an unknown key and a glob matching
-nothing each exit 2 with a message naming the problem, and write nothing.
+nothing each exit 2 with a message naming the problem, and write nothing. Time windows: a windowed
+stage analyses the frames inside on the replicas' common grid and records the window (root attribute,
+CSV line); a bad window (from >= to, stride 0, an unknown key, no frame or too few for a lag), the
+refused frame keys (structure frames, clusters t_min) and director_species without a director exit 2.
 """
 import glob
 import hashlib
@@ -96,6 +99,24 @@ assert np.all((U >= 0) & (U <= 1)), U
 d = stage("anisodyn-structure", {"reference": "none", "dr": 0.5}, "structure")
 assert np.all(np.isfinite(d["structure_board_board/g"]))
 
+# ---- time windows: the frames inside, recorded in the output -------------------------------------
+d = stage("anisodyn-msd", {"species": "board", "window": {"from": 2.0, "to": 15.0, "stride": 2}}, "msd_window")
+with h5py.File("msd_window.h5") as f:
+    w = json.loads(f.attrs["window"])
+grid = np.mean([h5py.File(p)["particles/all/position/time"][()] for p in sorted(glob.glob("rep*.h5"))], axis=0)
+inside = np.flatnonzero((grid >= 2.0) & (grid <= 15.0))[::2]
+assert (w["from"], w["to"], w["stride"], w["frames"]) == (2.0, 15.0, 2, len(inside)), w
+assert (w["first_frame"], w["last_frame"]) == (inside[0], inside[-1]), w
+assert d["msd_board/time"].max() <= grid[inside[-1]] - grid[inside[0]] + 1e-9, d["msd_board/time"].max()
+assert open("msd_window.msd_board.csv").readline().startswith("# window: {"), "no window line in the CSV"
+with h5py.File("msd.h5") as f:
+    assert "window" not in f.attrs  # no window, no record
+d = stage("anisodyn-order", {"window": {"from": 3.0, "to": 9.0}}, "order_window")
+assert d["order_board/time"].min() >= 3.0 and d["order_board/time"].max() <= 9.0, d["order_board/time"]  # trajectory time
+d = stage("anisodyn-structure", {"reference": "none", "dr": 0.5, "window": {"to": 5.0}}, "structure_window")
+assert d["scalars/particles_board_board"][0] == 40
+print(f"windows: msd over frames {inside[0]}-{inside[-1]} stride 2 ({len(inside)} frames), order and structure windowed")
+
 # ---- bad input: exit 2, a message naming the problem, nothing written ----------------------------
 with h5py.File("rep0.h5") as src:
     with h5py.File("no_image.h5", "w") as dst:
@@ -112,6 +133,15 @@ json.dump({}, open("empty.json", "w"))
 json.dump({"reference": "director"}, open("director.json", "w"))
 json.dump({"reference": "director", "dr": 0.5}, open("structure_director.json", "w"))
 json.dump({"lags_per_decde": 5}, open("typo.json", "w"))
+json.dump({"window": {"from": 5.0, "to": 5.0}}, open("window_empty_range.json", "w"))
+json.dump({"window": {"stride": 0}}, open("window_stride.json", "w"))
+json.dump({"window": {"from": 1.0, "too": 3.0}}, open("window_key.json", "w"))
+json.dump({"window": {"from": 100.0}}, open("window_late.json", "w"))
+one = int(np.argmin(np.abs(grid - 5.0)))  # a window around one frame of the common grid
+json.dump({"window": {"from": grid[one] - 1e-6, "to": grid[one] + 1e-6}}, open("window_one_frame.json", "w"))
+json.dump({"frames": {"first": 2}}, open("structure_frames.json", "w"))
+json.dump({"mode": "nematic", "axis": "L", "K_par": 12.25, "K_perp": 1.55, "t_min": 5}, open("clusters_t_min.json", "w"))
+json.dump({"reference": "axes", "director_species": "board"}, open("director_species.json", "w"))
 cases = [
     ("missing dataset", ["anisodyn-msd", "--config", "empty.json", "--input", "no_image.h5"], "particles/all/image"),
     ("frames out of order", ["anisodyn-msd", "--config", "empty.json", "--input", "unordered.h5"], "frames out of order"),
@@ -121,6 +151,14 @@ cases = [
     ("unknown key", ["anisodyn-msd", "--config", "typo.json", "--input", "rep*.h5"], "lags_per_decade"),
     ("glob matching nothing", ["anisodyn-rotation", "--config", "empty.json", "--input", "nothing*.h5"], "no input file matches"),
     ("rotation: frames out of order", ["anisodyn-rotation", "--config", "empty.json", "--input", "unordered.h5"], "frames out of order"),
+    ("window: from >= to", ["anisodyn-msd", "--config", "window_empty_range.json", "--input", "rep*.h5"], "at window.to"),
+    ("window: stride 0", ["anisodyn-rotation", "--config", "window_stride.json", "--input", "rep*.h5"], "at window.stride"),
+    ("window: unknown key", ["anisodyn-order", "--config", "window_key.json", "--input", "rep*.h5"], "window.too"),
+    ("window: no frame", ["anisodyn-structure", "--config", "window_late.json", "--input", "rep*.h5"], "selects 0 frame(s) of rep0.h5"),
+    ("window: one frame for a lag", ["anisodyn-msd", "--config", "window_one_frame.json", "--input", "rep*.h5"], "needs at least 2"),
+    ("structure: frame indices", ["anisodyn-structure", "--config", "structure_frames.json", "--input", "rep*.h5"], "at frames"),
+    ("clusters: t_min", ["anisodyn-clusters", "--config", "clusters_t_min.json", "--input", "rep*.h5"], "at t_min"),
+    ("msd: director_species without a director", ["anisodyn-msd", "--config", "director_species.json", "--input", "rep*.h5"], "at director_species"),
 ]
 for name, args, expected in cases:
     out = "bad_" + name.replace(" ", "_").replace(":", "")

@@ -39,7 +39,8 @@ cat > unreachable.json <<'JSON'
 JSON
 expect_bad "unreachable packing fraction (random)" "packing_fraction.*cannot be reached.*stuck" out6.h5 -- "$bin/anisodyn-config" --config unreachable.json --output out6.h5
 
-sed 's/"placement": "random", //' unreachable.json > unreachable_lattice.json
+# lattice placement has no use for the insertion bound: drop it with the placement
+sed 's/"placement": "random", "max_attempts_per_particle": 2000/"placement": "lattice"/' unreachable.json > unreachable_lattice.json
 expect_bad "unreachable packing fraction (lattice)" "packing_fraction.*lattice holds" out7.h5 -- "$bin/anisodyn-config" --config unreachable_lattice.json --output out7.h5
 
 expect_bad "missing input file" "no_such_state.h5" out8.h5 -- "$bin/anisodyn-mc" --config good_mc.json --input no_such_state.h5 --output out8.h5

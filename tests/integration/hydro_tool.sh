@@ -51,6 +51,25 @@ run_bad "misspelt key" "o6.json.json.*unknown key 'shels'" \
   '{"species": [{"name": "x", "shape": {"type": "sphere", "diameter": 1}}], "shels": {"count": 4}}' o6.json
 run_bad "repeated name" "o7.json.json.*species\[1\]\.name.*unique" \
   '{"species": [{"name": "x", "shape": {"type": "sphere", "diameter": 1}}, {"name": "x", "shape": {"type": "sphere", "diameter": 2}}]}' o7.json
+run_bad "unknown shell construction" "o8.json.json.*construction.*(one of|expected)" \
+  '{"species": [{"name": "x", "shape": {"type": "sphere", "diameter": 1}}], "construction": "voronoi"}' o8.json
+run_bad "construction that does not cover the shape" "o9.json.json.*species\[0\]\.construction.*cell_centres shell construction covers" \
+  '{"species": [{"name": "x", "shape": {"type": "spherocylinder", "length": 2, "diameter": 1}, "construction": "cell_centres"}]}' o9.json
+
+# The second shell construction runs and says so in the method; the default's method is unchanged.
+cat > cells.json <<'JSON'
+{"species": [{"name": "cube", "shape": {"type": "cube", "edge": 1}, "construction": "cell_centres"}],
+ "shells": {"count": 4, "max_beads": 1500}}
+JSON
+"$bin/anisodyn-hydro" -q --config cells.json --output cells.json.out.json || { echo "FAIL: cell_centres does not run"; exit 1; }
+"$PYTHON" - <<'PY' || { echo "FAIL: construction in the method"; exit 1; }
+import json
+cells = json.load(open("cells.json.out.json"))["species"][0]["hydro"]["method"]
+default = next(s for s in json.load(open("species.json"))["species"] if s["name"] == "cube")["hydro"]["method"]
+assert cells.endswith("; shell construction cell_centres"), cells
+assert "construction" not in default, default
+PY
+
 cat > bad_from.json <<'JSON'
 {"seed": 1, "species": [{"name": "cube", "diffusion_from": {"file": "species.json", "species": "sphere"}}],
  "composition": [{"species": "cube", "count": 8}], "box": {"edges": [6, 6, 6]}}

@@ -1,1 +1,38 @@
-anisodyn_add_script_test(study_manifests study_manifests.py)
+# One test per study manifest, integration_study_<name>: manifests/quickstart.json and every
+# manifests/*-smoke.json (a new smoke manifest is picked up at the next build: CONFIGURE_DEPENDS),
+# so that `ctest -j2` runs two manifests at a time instead of all of them in series.
+#
+# Each runs the runner with 2 workers (engines are single-threaded), so at most 4 engines share the
+# 2 cores. With one worker per test, the independent replicas of a manifest run one after the other
+# even when the other ctest slot is idle: nu_nb_switching-smoke spends most of its time in two DMC
+# replicas, and became the tail of the suite that way.
+#
+# COST: without timings from an earlier run (a fresh build directory), ctest starts the tests of
+# highest COST first. The manifests' COST is the runner's cost estimate of their engine jobs in
+# seconds (manifest_costs.py), so the longest manifests start first and the short tests fill in.
+#
+# Default suite budget: under 10 minutes on 2 cores. A smoke manifest that would break it gets the
+# label `slow` (scripts/test --all) by being named in _slow_smoke_manifests.
+set(_slow_smoke_manifests)
+set(_workers 2)
+file(GLOB _smoke_manifests CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/manifests/*-smoke.json)
+set(_manifests ${CMAKE_SOURCE_DIR}/manifests/quickstart.json ${_smoke_manifests})
+execute_process(COMMAND ${ANISODYN_SYSTEM_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/manifest_costs.py ${_manifests}
+                OUTPUT_VARIABLE _manifest_costs ERROR_QUIET)
+string(REPLACE "\n" ";" _manifest_costs "${_manifest_costs}")
+foreach(_line ${_manifest_costs})
+  if(_line MATCHES "^([^ ]+) ([0-9]+)$")
+    set(_cost_${CMAKE_MATCH_1} ${CMAKE_MATCH_2})
+  endif()
+endforeach()
+foreach(_manifest ${_manifests})
+  get_filename_component(_study ${_manifest} NAME_WLE)
+  set(_slow)
+  if(_study IN_LIST _slow_smoke_manifests)
+    set(_slow SLOW)
+  endif()
+  anisodyn_add_script_test(study_${_study} study_manifests.py ${_slow} ARGS ${_study} ${_workers})
+  if(DEFINED _cost_${_study})
+    set_tests_properties(integration_study_${_study} PROPERTIES COST ${_cost_${_study}})
+  endif()
+endforeach()

@@ -1,14 +1,16 @@
 #!/usr/bin/env python3
-"""Runs manifests/quickstart.json and every manifests/*-smoke.json with anisodyn-run (2 workers)
-and checks each: exit 0, a report (summary.md, at least one PNG when the manifest asks for plots),
-and every scalar of every analysis output finite and physically sane: diffusion coefficients,
-response times and friction ratios > 0; uniaxial order parameters U in [0, 1]; fractions (X_c,
-p_b) in [0, 1]. Every engine trajectory (H5MD) must have finite positions, unit quaternions,
+"""Runs manifests/quickstart.json and every manifests/*-smoke.json with anisodyn-run and checks each: exit 0, a report (summary.md, at least one PNG when the manifest asks for plots),
+and every scalar of every analysis output finite and physically sane: diffusion coefficients and
+response times > 0; a pulled tracer's friction ratio gamma_eff/gamma_0 >= 1 - 4 SE (a bath cannot
+speed the tracer up); uniaxial order parameters U in [0, 1]; fractions (X_c, p_b) in [0, 1]. Every engine trajectory (H5MD) must have finite positions, unit quaternions,
 strictly increasing frame times and acceptances in [0, 1]; a DMC run that balanced several species
 at equilibrium must report a realised balance within 5% of 1 (a sanity bound for short smoke runs;
-the 0.5% acceptance check is the slow test validation_dmc_balance, docs/validation.md). Prints each manifest's
-wall time. A manifest name given as a fourth argument runs
-only that one."""
+the 0.5% acceptance check is the slow test validation_dmc_balance, docs/validation.md). Prints
+each manifest's wall time.
+
+argv: [1] build bin dir, [2] scratch dir, [3] source dir, [4] optional: the one manifest to run
+(name with or without .json; ctest registers one test per manifest, study_manifests.cmake),
+[5] optional: runner workers (default 2)."""
 import glob
 import json
 import math
@@ -24,9 +26,10 @@ import numpy as np
 
 bin_dir, tmp, source = sys.argv[1], sys.argv[2], sys.argv[3]
 only = sys.argv[4] if len(sys.argv) > 4 else None
+workers = int(sys.argv[5]) if len(sys.argv) > 5 else 2
 shutil.rmtree(tmp, ignore_errors=True)
 os.makedirs(tmp)
-runner = [sys.executable, os.path.join(source, "workflows", "anisodyn-run"), "--bin", bin_dir, "--jobs", "2", "--quiet",
+runner = [sys.executable, os.path.join(source, "workflows", "anisodyn-run"), "--bin", bin_dir, "--jobs", str(workers), "--quiet",
           "--results", tmp]
 manifests = [os.path.join(source, "manifests", "quickstart.json")] + sorted(glob.glob(os.path.join(source, "manifests", "*-smoke.json")))
 if only:
@@ -36,7 +39,6 @@ if only:
 RULES = [  # (scalar name pattern, lower, upper, what)
     (r"^D_", 0.0, math.inf, "a diffusion coefficient > 0"),
     (r"^(t_on|t_off)", 0.0, math.inf, "a response time > 0"),
-    (r"^gamma_eff_over_gamma0", 0.0, math.inf, "a friction ratio > 0"),
     (r"^U_(L|W|T)?_?", 0.0, 1.0, "a uniaxial order parameter in [0, 1]"),
     (r"^(X_c|p_b)", 0.0, 1.0, "a fraction in [0, 1]"),
 ]
@@ -69,8 +71,25 @@ def balance_problems(log, name):
         return []
     if summary.get("balance_mode") != "equilibrium" or len(summary.get("species", [])) < 2:
         return []
-    return [f"{name}: realised balance of {sp['name']} is {sp['realised_balance']:.4f}" for sp in summary["species"]
-            if "realised_balance" in sp and abs(sp["realised_balance"] - 1) > 0.05]
+    out = []
+    for sp in summary["species"]:
+        balance = sp.get("realised_balance")
+        if balance is None or not math.isfinite(balance):
+            out.append(f"{name}: no realised balance for {sp['name']}")
+        elif abs(balance - 1) > 0.05:
+            out.append(f"{name}: realised balance of {sp['name']} is {balance:.4f}")
+    return out
+
+
+def friction_problem(name, value, error, where):
+    """gamma_eff/gamma_0 of a pulled tracer: a bath slows it, so the ratio is at least 1 - 4 SE, with a finite SE."""
+    if not name.startswith("gamma_eff_over_gamma0"):
+        return []
+    if not math.isfinite(error) or error <= 0:
+        return [f"{where}: {name} = {value:.4g} has no standard error"]
+    if value < 1 - 4 * error:
+        return [f"{where}: {name} = {value:.4g} ± {error:.2g} is more than 4 SE below 1"]
+    return []
 
 
 failures = 0
@@ -102,6 +121,7 @@ for path in manifests:
                 continue
             for name, ds in f["scalars"].items():
                 value = float(ds[0])
+                error = float(ds[1]) if ds.shape[0] > 1 else float("nan")
                 checked += 1
                 if not math.isfinite(value):
                     definition = ds.attrs.get("definition", "")
@@ -111,13 +131,14 @@ for path in manifests:
                     else:
                         problems.append(f"{os.path.relpath(h5, campaign)}: {name} = {value} is not finite")
                     continue
+                problems += friction_problem(name, value, error, os.path.relpath(h5, campaign))
                 for pattern, lo, hi, what in RULES:
                     if re.match(pattern, name) and not (lo <= value <= hi):
                         problems.append(f"{os.path.relpath(h5, campaign)}: {name} = {value:.4g} is not {what}")
     status = "ok  " if not problems else "FAIL"
     if notes:
         print(f"     note: {len(notes)} scalar(s) NaN with a documented meaning: {sorted(set(notes))}")
-    print(f"{status} {os.path.basename(path)}: {wall:.1f} s on 2 workers, {checked} scalars checked" + ("" if not problems else "\n    " + "\n    ".join(problems[:10])))
+    print(f"{status} {os.path.basename(path)}: {wall:.1f} s on {workers} worker{'s' if workers > 1 else ''}, {checked} scalars checked" + ("" if not problems else "\n    " + "\n    ".join(problems[:10])))
     failures += bool(problems)
 print(f"{failures} failed")
 assert failures == 0, f"{failures} manifest(s) failed (see above)"

@@ -17,6 +17,15 @@
 //                        ξ_i^r = 16πη(b_j² + b_k²)/[3(b_j² P_j + b_k² P_k)]   ({i,j,k} = {1,2,3}).
 //   Cylinder         : Tirado, López Martínez & García de la Torre, J. Chem. Phys. 81, 2047 (1984),
 //                      length L, diameter d, p = L/d (fits valid for 2 ≲ p ≲ 30).
+//   Capacitance      : (units where a sphere's C is its radius) of a triaxial ellipsoid C = 2/χ
+//                      (Kellogg, "Foundations of potential theory" (1929) §VII.6; Landau & Lifshitz,
+//                      "Electrodynamics of continuous media" §4); closed forms for spheroids with
+//                      polar semi-axis a and equatorial c: prolate (a > c) C = √(a²−c²)/arccosh(a/c),
+//                      oblate (a < c) C = √(c²−a²)/arccos(a/c) (Smythe, "Static and dynamic
+//                      electricity" §5.03). For every ellipsoid the orientational mean translational
+//                      mobility is χ/(12πη), i.e. R_h = 1/(6πη D̄_t) = C exactly (Hubbard & Douglas,
+//                      Phys. Rev. E 47, R2983 (1993)); for other convex bodies R_h ≥ C (Blawzdziewicz,
+//                      Wajnryb, Given & Hubbard, Phys. Fluids 17, 033602 (2005)).
 //
 // Quadrature: the integrals are evaluated in y = ln s (ds = e^y dy), where the integrands are
 // smooth bumps located near y = ln b_i². The real line is split at y_lo = ln(min b²) − 40 and
@@ -186,6 +195,21 @@ inline EllipsoidDiffusion ellipsoid_diffusion(double b1, double b2, double b3, d
     d.D_rot[i] = kT / xr[i];
   }
   return d;
+}
+
+// ---- capacitance (electrostatics; a sphere's C is its radius) -----------------------------------
+
+// C = 2/χ for semi-axes (b1, b2, b3).
+inline double ellipsoid_capacitance(double b1, double b2, double b3) {
+  return 2.0 / ellipsoid_integrals(b1, b2, b3).chi;
+}
+
+// Spheroid with polar semi-axis a and equatorial semi-axes c (closed forms, no quadrature).
+inline double spheroid_capacitance(double a, double c) {
+  detail::check_semi_axes(a, c, c);
+  if (a > c) return std::sqrt(a * a - c * c) / std::acosh(a / c);
+  if (a < c) return std::sqrt(c * c - a * a) / std::acos(a / c);
+  return a;
 }
 
 // ---- cylinder (Tirado, López Martínez & García de la Torre, J. Chem. Phys. 81, 2047 (1984)) ----

@@ -61,6 +61,24 @@ struct SyntheticTrajectory {
   }
 };
 
+/// The frames first, first + stride, … (count of them) of t, as their own trajectory (the
+/// truncated run a time window must reproduce); observables are kept whole.
+inline SyntheticTrajectory frames_of(const SyntheticTrajectory& t, std::size_t first, std::size_t count, std::size_t stride = 1) {
+  SyntheticTrajectory out = t;
+  out.time.clear();
+  out.position.clear();
+  out.orientation.clear();
+  for (auto& extra : out.extras) extra.second.second.clear();
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::size_t f = first + k * stride;
+    out.time.push_back(t.time[f]);
+    out.position.push_back(t.position[f]);
+    if (!t.orientation.empty()) out.orientation.push_back(t.orientation[f]);
+    for (std::size_t e = 0; e < t.extras.size(); ++e) out.extras[e].second.second.push_back(t.extras[e].second.second[f]);
+  }
+  return out;
+}
+
 /// Frames at t = k·dt, k = 0 … frames − 1.
 inline std::vector<double> linear_times(std::size_t frames, double dt) {
   std::vector<double> t(frames);

@@ -15,6 +15,7 @@
 #include "input_error.hpp"
 #include "scratch_dir.hpp"
 #include "synthetic_trajectory.hpp"
+#include "time_window.hpp"
 
 using namespace anisodyn;
 using namespace anisodyn::analysis;
@@ -385,6 +386,48 @@ TEST(NematicClusterAnalysis, AggregatesHistogramTotalsAndDirectorAngles) {
   EXPECT_DOUBLE_EQ(res.cos_density[2].front(), 0.5 / w);
   EXPECT_DOUBLE_EQ(res.cos_density[0].back(), 0.5 / w);
   EXPECT_DOUBLE_EQ(res.cos_density[1].front(), 1.0 / w);
+}
+
+TEST_F(DipolarChainTest, AWindowKeepsTrajectoryTimeAndFileFrameIndices) {
+  // dipolar chains: the time series and t_r stay in trajectory time (not time since the window start)
+  testing_support::SyntheticTrajectory syn;
+  syn.box = Vec3(30, 30, 30);
+  syn.time = {0.0, 1.0, 2.0, 3.0};
+  syn.position.assign(4, planted_chains({2, 3}, 4));
+  const std::string chains = file("chains.h5");
+  syn.write(chains);
+  TrajectoryNeeds needs;
+  needs.positions = true;
+  needs.window = testing_support::time_window(1.0, std::nullopt);
+  DipolarClusterSettings ds;
+  ds.rule = cube_rule();
+  DipolarChainAnalysis d(ds);
+  for_each_replica({chains}, needs, [&](const Trajectory& t, std::size_t) { d.accumulate(t, -1); });
+  const DipolarChainResult dr = d.compute();
+  EXPECT_EQ(dr.time, (std::vector<double>{1.0, 2.0, 3.0}));
+  EXPECT_DOUBLE_EQ(dr.response_time.value, 1.0);  // on the plateau at the window's first frame, t = 1
+  // nematic clusters: a configuration's frame is its index in the file
+  std::mt19937_64 rng(13);
+  std::vector<Vec3> r;
+  std::vector<Quat> q;
+  planted_boards(r, q, rng);
+  testing_support::SyntheticTrajectory boards;
+  boards.box = Vec3(100, 100, 100);
+  boards.time = {0.0, 1.0, 2.0, 3.0};
+  boards.position.assign(4, r);
+  boards.orientation.assign(4, q);
+  boards.table = {Species{"board", Shape::cuboid(1, 1, 12), 1.0, Vec3::Ones(), Vec3::Ones()}};
+  const std::string nematic = file("boards.h5");
+  boards.write(nematic);
+  needs.orientations = true;
+  needs.window = testing_support::time_window(2.0, std::nullopt);
+  NematicClusterAnalysis n(prolate_settings(), 1);
+  for_each_replica({nematic}, needs, [&](const Trajectory& t, std::size_t) { n.accumulate(t, -1); });
+  const NematicClusterResult nr = n.compute();
+  ASSERT_EQ(nr.per_configuration.size(), 2u);
+  EXPECT_EQ(nr.per_configuration[0].frame, 2u);
+  EXPECT_EQ(nr.per_configuration[1].frame, 3u);
+  EXPECT_EQ(nr.per_configuration[1].time, 3.0);
 }
 
 TEST(NematicClusters, ThresholdOutsideItsRangeIsAnInputError) {

@@ -18,11 +18,13 @@
 #include <random>
 
 #include "anisodyn/analysis/active_microrheology.hpp"
+#include "anisodyn/analysis/fitting.hpp"
 #include "anisodyn/analysis/passive_microrheology.hpp"
 #include "anisodyn/core/box.hpp"
 #include "anisodyn/core/error.hpp"
 #include "scratch_dir.hpp"
 #include "synthetic_trajectory.hpp"
+#include "time_window.hpp"
 
 using namespace anisodyn;
 using namespace anisodyn::analysis;
@@ -71,7 +73,6 @@ TEST_F(MicrorheologyTest, ViscousFluidGivesLossModulusEtaOmegaAndNoStorageModulu
   EXPECT_NEAR(r.evans_t_max, r.fit_t_max, 1e-9);  // the Evans sum stops at the end of the D_long window
   // A handful of frequencies across the grid (every one would be many correlated 4σ comparisons).
   const std::size_t n = r.time.size();
-  int checked = 0;
   for (std::size_t k : {std::size_t{3}, n / 5, 2 * n / 5, 3 * n / 5, 4 * n / 5}) {
     const double w = r.mason.omega[k];
     std::printf("viscous: omega %7.3f  G''/(eta omega): Mason %.4f ± %.4f, Evans %.4f ± %.4f;  G'/(eta omega): Mason %+.4f ± %.4f, Evans %+.4f ± %.4f\n",
@@ -90,9 +91,7 @@ TEST_F(MicrorheologyTest, ViscousFluidGivesLossModulusEtaOmegaAndNoStorageModulu
     // the errors are real errors, positive and small enough for the 4 SE comparisons to bite
     EXPECT_GT(r.mason_error.loss[k], 0.0);
     EXPECT_LT(r.mason_error.loss[k], 0.2 * eta * w);
-    ++checked;
   }
-  EXPECT_EQ(checked, 5);
   // the shortest lags have fewer than 4 points within ±0.25 decade: no Mason value there
   EXPECT_TRUE(std::isnan(r.mason.loss[0]));
 }
@@ -204,9 +203,8 @@ TEST(MaxwellFluid, MasonFollowsTheGserClosedFormAndItsErrorAgainstEvansIsMeasure
   // Near the crossover the GSER itself is ~20 % low (α changes quickly there): it is the method, not
   // the implementation (the closed-form check above), so the spec's 5 % Mason–Evans agreement does
   // not hold at ωλ ≈ 1. Pin the measured size so that a change shows.
-  // at ωλ = 1: α = 1/2, |G*| = G0/(2Γ(3/2)), G′ = |G*| cos(π/4) against the exact G0/2
+  // at ωλ = 1: α = 1/2, |G*| = G0/(2Γ(3/2)), G′ = |G*| cos(π/4), 20.2 % below the exact G0/2
   const double gser = m.G0 / (2.0 * std::tgamma(1.5)) * std::cos(kPi / 4);
-  EXPECT_NEAR(gser / m.storage(1.0 / m.lambda()) - 1.0, -0.2021, 1e-3);
   EXPECT_NEAR(g.storage[t.size() / 2] / gser - 1.0, 0.0, 1e-3);  // t_40 = λ: ωλ = 1 on the grid
   EXPECT_GT(worst_near_crossover, 0.15);
 }
@@ -353,21 +351,98 @@ TEST_F(MicrorheologyTest, FreePulledTracerHasFrictionRatioOne) {
   }
 }
 
-TEST_F(MicrorheologyTest, SingleReplicaUsesTimeBlocksAndTheTracerPositionObservableWins) {
-  const double D = 0.1, v = 2.0;
-  // The frames hold a tracer that does not move; the observable (recorded more often) holds the pulled path.
-  SyntheticTrajectory t = pulled_tracer(21, 1.0, D, 0.0, 3);
-  for (auto& frame : t.position) frame[0] = Vec3(5, 5, 5);
-  const SyntheticTrajectory path = pulled_tracer(2001, 0.01, D, v, 4);
-  std::vector<std::pair<double, std::vector<double>>> rows;
-  for (std::size_t f = 0; f < path.time.size(); ++f) rows.push_back({path.time[f], {path.position[f][0].x(), path.position[f][0].y(), path.position[f][0].z()}});
-  t.observables.push_back({"tracer_position", rows});
-  const std::string p = file("obs.h5");
-  t.write(p);
+TEST(SteadyVelocity, EndToEndDriftIsUnbiasedWithTheBrownianVarianceAndBeatsTheLeastSquaresSlope) {
+  // 400 independent drifting walks (D = 0.1, v = 0.5) sampled at 201 points over t in [0, 20]:
+  // the end-to-end drift has variance 2D/T, the least-squares slope of the same path 6/5 of that.
+  const double D = 0.1, v = 0.5, dt = 0.1;
+  const std::size_t walks = 400, points = 201;
+  std::vector<double> drift, fitted, reported_error;
+  for (unsigned w = 0; w < walks; ++w) {
+    const SyntheticTrajectory t = pulled_tracer(points, dt, D, v, 7000 + w);
+    std::vector<double> time = t.time, z;
+    for (const auto& frame : t.position) z.push_back(frame[0].z() - t.position[0][0].z());
+    const SteadyVelocity s = steady_velocity(time, z, 1.0, 0.0);  // from t = 0
+    ASSERT_EQ(s.first, 0u);
+    ASSERT_EQ(s.points, points);
+    EXPECT_DOUBLE_EQ(s.velocity, (z.back() - z.front()) / (time.back() - time.front()));
+    drift.push_back(s.velocity);
+    reported_error.push_back(s.velocity_error);
+    fitted.push_back(fit_line(time, z).slope);
+  }
+  const double T = dt * static_cast<double>(points - 1), expected_sd = std::sqrt(2 * D / T);
+  const Estimate m = mean_and_error(drift);
+  EXPECT_NEAR(m.value, v, 4 * m.error);
+  const double sd = m.error * std::sqrt(static_cast<double>(walks));
+  // The sample sd of n Gaussian values has relative SE 1/√(2(n − 1)) ≈ 3.5% here: 4 SE.
+  EXPECT_NEAR(sd, expected_sd, 4 * expected_sd / std::sqrt(2.0 * (walks - 1)));
+  const double fitted_sd = mean_and_error(fitted).error * std::sqrt(static_cast<double>(walks));
+  EXPECT_NEAR(fitted_sd, std::sqrt(1.2) * expected_sd, 4 * std::sqrt(1.2) * expected_sd / std::sqrt(2.0 * (walks - 1)));
+  EXPECT_LT(sd, fitted_sd);
+  // The per-path error, from the path's own increments, is σ/√T on average.
+  const Estimate per_path = mean_and_error(reported_error);
+  EXPECT_LT(per_path.error, 0.01 * expected_sd);  // 200 increments per path: σ² to ~5%, the mean of 400 to ~0.2%
+  EXPECT_NEAR(per_path.value, expected_sd, 4 * per_path.error + 0.001 * expected_sd);  // + the O(1/n) bias of a square root
+}
+
+TEST_F(MicrorheologyTest, ZeroForceIsAPassiveReferenceWithNoFrictionRatio) {
+  const double D = 1.0 / (3.0 * kPi);
+  std::vector<std::string> paths;
+  for (unsigned r = 0; r < 20; ++r) {
+    paths.push_back(file("pe0_" + std::to_string(r) + ".h5"));
+    pulled_tracer(201, 0.05, D, 0.0, 300 + r).write(paths.back());
+  }
+  nlohmann::json j = {{"species", "tracer"}, {"pe", 0.0}};
+  io::ConfigNode cfg(j, "cfg.json");
+  ActiveMicrorheologySettings s = parse_active_microrheology_settings(cfg);
+  cfg.finish();
+  nlohmann::json details;
+  resolve_active_defaults(s, pulled_tracer(2, 1.0, D, 0.0, 1).table, nlohmann::json::object(), "cfg.json", details);
+  ASSERT_EQ(s.beta_force, 0.0);
+  ASSERT_TRUE(s.steady_from.has_value());  // no transient: the whole run
+  EXPECT_EQ(*s.steady_from, 0.0);
+  ActiveMicrorheology a(s, paths.size(), "cfg.json");
+  for_each_replica(paths, positions_and_observables(), [&](const Trajectory& t, std::size_t) { a.accumulate(t); });
+  const ActiveResult r = a.compute();
+  EXPECT_NEAR(r.velocity.value, 0.0, 4 * r.velocity.error);
+  EXPECT_LT(r.velocity.error, 0.1);  // √(2D/T)/√20 = 0.024 expected
+  EXPECT_TRUE(std::isnan(r.gamma_ratio.value));
+  // steady_distance cannot mean anything without a drift
+  nlohmann::json bad = {{"species", "tracer"}, {"pe", 0.0}, {"steady_distance", 1.0}};
+  io::ConfigNode bad_cfg(bad, "cfg.json");
+  ActiveMicrorheologySettings b = parse_active_microrheology_settings(bad_cfg);
+  try {
+    resolve_active_defaults(b, pulled_tracer(2, 1.0, D, 0.0, 1).table, nlohmann::json::object(), "cfg.json", details);
+    ADD_FAILURE() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.json_path(), "steady_distance");
+  }
+}
+
+/// The pulled tracer "tracer" with free diffusion D and drift velocity v = D βF.
+ActiveMicrorheologySettings tracer_settings(double D, double v) {
   ActiveMicrorheologySettings s;
   s.species = "tracer";
   s.beta_force = v / D;
   s.D_s = D;
+  return s;
+}
+
+/// `frames` with the tracer path of `path` (its particle 0) recorded as the tracer_position observable.
+SyntheticTrajectory with_observed_path(SyntheticTrajectory frames, const SyntheticTrajectory& path) {
+  std::vector<std::pair<double, std::vector<double>>> rows;
+  for (std::size_t f = 0; f < path.time.size(); ++f) rows.push_back({path.time[f], {path.position[f][0].x(), path.position[f][0].y(), path.position[f][0].z()}});
+  frames.observables.push_back({"tracer_position", rows});
+  return frames;
+}
+
+TEST_F(MicrorheologyTest, SingleReplicaUsesTimeBlocksAndTheTracerPositionObservableWins) {
+  const double D = 0.1, v = 2.0;
+  // The frames hold a tracer that does not move; the observable (recorded more often) holds the pulled path.
+  SyntheticTrajectory t = with_observed_path(pulled_tracer(21, 1.0, D, 0.0, 3), pulled_tracer(2001, 0.01, D, v, 4));
+  for (auto& frame : t.position) frame[0] = Vec3(5, 5, 5);
+  const std::string p = file("obs.h5");
+  t.write(p);
+  ActiveMicrorheologySettings s = tracer_settings(D, v);
   ActiveMicrorheology a(s, 1);
   for_each_replica({p}, positions_and_observables(), [&](const Trajectory& tr, std::size_t) { a.accumulate(tr); });
   const ActiveResult r = a.compute();
@@ -384,6 +459,27 @@ TEST_F(MicrorheologyTest, SingleReplicaUsesTimeBlocksAndTheTracerPositionObserva
   } catch (const InputError& e) {
     EXPECT_EQ(e.json_path(), "steady_distance");
   }
+}
+
+TEST_F(MicrorheologyTest, AWindowLimitsTheTracerPathObservableToItsTimes) {
+  const double D = 0.1, v = 2.0;
+  const SyntheticTrajectory t = with_observed_path(pulled_tracer(21, 1.0, D, 0.0, 5), pulled_tracer(2001, 0.01, D, v, 6));
+  const std::string p = file("window.h5");
+  t.write(p);
+  ActiveMicrorheologySettings s = tracer_settings(D, v);
+  s.steady_distance = 0.0;  // steady from the window's first sample
+  s.density_map = false;
+  TrajectoryNeeds needs = positions_and_observables();
+  needs.window = anisodyn::testing_support::time_window(10.0, 15.0);
+  ActiveMicrorheology a(s, 1);
+  for_each_replica({p}, needs, [&](const Trajectory& tr, std::size_t) { a.accumulate(tr); });
+  const ActiveResult r = a.compute();
+  EXPECT_EQ(r.path_source, "observable tracer_position");
+  // the fitted path is the observable's rows with 10 ≤ t ≤ 15 (501 rows at 0.01 τ)
+  EXPECT_NEAR(r.replicas[0].t_start, 10.0, 1e-9);
+  EXPECT_NEAR(r.replicas[0].t_end, 15.0, 1e-9);
+  EXPECT_EQ(r.replicas[0].points, 501u);
+  EXPECT_NEAR(r.gamma_ratio.value, 1.0, 4 * r.gamma_ratio.error);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -597,6 +693,15 @@ TEST(MicrorheologySettings, KeysAreParsedAndCheckedWithTheirPaths) {
   nlohmann::json both = {{"species", "tracer"}, {"beta_force", 1.0}, {"pe", 1.0}};
   io::ConfigNode both_cfg(both, "cfg.json");
   EXPECT_THROW(parse_active_microrheology_settings(both_cfg), InputError);
+  // steady_from decides where the steady part starts: steady_distance beside it has no effect
+  nlohmann::json window_twice = {{"species", "tracer"}, {"steady_from", 1.0}, {"steady_distance", 1.0}};
+  io::ConfigNode twice_cfg(window_twice, "cfg.json");
+  try {
+    parse_active_microrheology_settings(twice_cfg);
+    ADD_FAILURE() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.json_path(), "steady_distance");
+  }
 
   nlohmann::json p = {{"species", "probe"}, {"tracer_diameter", 3.0}, {"fit", {{"t_min", 10.0}, {"t_max", 100.0}}}};
   io::ConfigNode pcfg(p, "cfg.json");

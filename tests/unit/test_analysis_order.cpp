@@ -14,6 +14,7 @@
 #include "input_error.hpp"
 #include "scratch_dir.hpp"
 #include "synthetic_trajectory.hpp"
+#include "time_window.hpp"
 
 using namespace anisodyn;
 using namespace anisodyn::analysis;
@@ -352,4 +353,29 @@ TEST_F(OrderFileTest, SpheresAreNotOrientedSpecies) {
   EXPECT_EQ(sel[0].index, 1);
   const InputError e = input_error([&] { select_oriented_species(path, "S", "cfg.json", "species"); });
   EXPECT_EQ(e.json_path(), "species");
+}
+
+TEST_F(OrderFileTest, AWindowKeepsTrajectoryTimeOnTheCommonGrid) {
+  // aligned boards for t < 5, then half of them turned: U_L drops from 1; the window 3 … 6 holds
+  // both, on the trajectory's own time axis
+  anisodyn::testing_support::SyntheticTrajectory st;
+  st.time = anisodyn::testing_support::linear_times(10, 1.0);
+  st.position.assign(10, std::vector<Vec3>(8, Vec3(1, 1, 1)));
+  st.orientation.assign(10, std::vector<Quat>(8, Quat::Identity()));
+  for (std::size_t f = 5; f < 10; ++f)
+    for (std::size_t i = 0; i < 4; ++i) st.orientation[f][i] = Quat(Eigen::AngleAxisd(M_PI / 2, Vec3::UnitX()));
+  st.table = {Species{"C", Shape::cuboid(1, 2, 8), 1.0, Vec3::Ones(), Vec3::Ones()}};
+  const std::string path = file("turn.h5");
+  st.write(path);
+  TrajectoryNeeds needs;
+  needs.orientations = true;
+  needs.window = anisodyn::testing_support::time_window(3.0, 6.0);
+  OrderAnalysis a(OrderStageSettings{}, "order.json");
+  const auto grid = for_each_replica({path}, needs, [&](const Trajectory& t, std::size_t) { a.accumulate(t, -1); });
+  const OrderResult r = a.compute(grid);
+  EXPECT_EQ(r.time, (std::vector<double>{3, 4, 5, 6}));
+  EXPECT_EQ(r.averaged_frames, 4u);
+  const auto& u = r.get("U_L").mean;
+  EXPECT_NEAR(u[0], 1.0, 1e-12);
+  EXPECT_LT(u[2], 0.9);  // t = 5: half turned
 }

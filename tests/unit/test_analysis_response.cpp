@@ -14,6 +14,7 @@
 #include "input_error.hpp"
 #include "scratch_dir.hpp"
 #include "synthetic_trajectory.hpp"
+#include "time_window.hpp"
 
 using namespace anisodyn;
 using namespace anisodyn::analysis;
@@ -260,17 +261,25 @@ TEST(ResponseStage, ConfigSwitchInstantsAndBadInputs) {
 class ResponseFileTest : public anisodyn::testing_support::ScratchDirTest {
  protected:
   ResponseFileTest() : ScratchDirTest("response") {}
+
+  /// 20 boards with identity orientations (S_cube = 1 about x) in `frames` frames 0.5 apart, with
+  /// the given field_switches rows (time, state, direction), written to `name`.
+  std::string boards_with_switches(const std::string& name, std::size_t frames,
+                                   const std::vector<std::pair<double, std::vector<double>>>& switches) {
+    anisodyn::testing_support::SyntheticTrajectory st;
+    st.time = anisodyn::testing_support::linear_times(frames, 0.5);
+    st.position.assign(frames, std::vector<Vec3>(20, Vec3(1, 1, 1)));
+    st.orientation.assign(frames, std::vector<Quat>(20, Quat::Identity()));
+    st.table = {Species{"H", Shape::cuboid(1, 2, 8), 1.0, Vec3::Ones(), Vec3::Ones()}};
+    st.observables.push_back({"field_switches", switches});
+    const std::string path = file(name);
+    st.write(path);
+    return path;
+  }
 };
 
 TEST_F(ResponseFileTest, FieldSwitchesObservableIsReadFromH5md) {
-  anisodyn::testing_support::SyntheticTrajectory st;
-  st.time = anisodyn::testing_support::linear_times(40, 0.5);
-  st.position.assign(40, std::vector<Vec3>(20, Vec3(1, 1, 1)));
-  st.orientation.assign(40, std::vector<Quat>(20, Quat::Identity()));
-  st.table = {Species{"H", Shape::cuboid(1, 2, 8), 1.0, Vec3::Ones(), Vec3::Ones()}};
-  st.observables.push_back({"field_switches", {{0.0, {0, 1, 0, 0}}, {5.0, {1, 1, 0, 0}}, {12.0, {0, 1, 0, 0}}}});
-  const std::string path = file("sw.h5");
-  st.write(path);
+  const std::string path = boards_with_switches("sw.h5", 40, {{0.0, {0, 1, 0, 0}}, {5.0, {1, 1, 0, 0}}, {12.0, {0, 1, 0, 0}}});
   TrajectoryNeeds needs;
   needs.orientations = true;
   needs.observables = {"field_switches"};
@@ -284,4 +293,31 @@ TEST_F(ResponseFileTest, FieldSwitchesObservableIsReadFromH5md) {
   // identity orientations and the recorded field x: S_cube = 1 throughout
   EXPECT_NEAR(r.replicas[0].b_on, 1.0, 1e-12);
   EXPECT_NEAR(r.curve_time.front(), -5.0, 1e-12);
+}
+
+TEST_F(ResponseFileTest, AWindowMeasuresTheSwitchesInsideIt) {
+  // two cycles: on at 5, off at 12, on at 20, off at 27; the window from 15 holds the second
+  const std::string path = boards_with_switches(
+      "two.h5", 80, {{0.0, {0, 1, 0, 0}}, {5.0, {1, 1, 0, 0}}, {12.0, {0, 1, 0, 0}}, {20.0, {1, 1, 0, 0}}, {27.0, {0, 1, 0, 0}}});
+  auto analyse = [&](const FrameWindow& w, std::size_t cycle) {
+    TrajectoryNeeds needs;
+    needs.orientations = true;
+    needs.event_observables = {"field_switches"};
+    needs.window = w;
+    ResponseSettings rs;
+    rs.signal = "S_cube";
+    rs.cycle = cycle;
+    ResponseAnalysis a(rs);
+    for_each_replica({path}, needs, [&](const Trajectory& t, std::size_t) { a.accumulate(t, -1); });
+    return a.compute();
+  };
+  const ResponseResult windowed = analyse(anisodyn::testing_support::time_window(15.0, std::nullopt), 0), second = analyse(FrameWindow{}, 1);
+  EXPECT_EQ(windowed.replicas[0].switch_on, 20.0);  // cycle 0 counts the switch-ons inside the window
+  EXPECT_EQ(windowed.replicas[0].switch_off, 27.0);
+  EXPECT_EQ(second.replicas[0].switch_on, 20.0);
+  // the reference segment is the window's field-off frames before the switch-on: t = 15 … 19.5
+  EXPECT_EQ(windowed.replicas[0].reference_frames, 10u);
+  EXPECT_NEAR(windowed.curve_time.front(), -5.0, 1e-12);  // time since the switch-on, from the window's first frame
+  // a window without a switch-on inside
+  EXPECT_THROW(analyse(anisodyn::testing_support::time_window(28.0, std::nullopt), 0), InputError);
 }

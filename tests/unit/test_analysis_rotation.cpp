@@ -8,6 +8,7 @@
 #include "anisodyn/core/quaternion.hpp"
 #include "scratch_dir.hpp"
 #include "synthetic_trajectory.hpp"
+#include "time_window.hpp"
 
 using namespace anisodyn;
 using namespace anisodyn::analysis;
@@ -103,6 +104,42 @@ TEST_F(RotationTest, FreeRotationFromExactRotationVectors) {
   check_free_rotation(r);
   EXPECT_TRUE(r.axes[0].exact_rotation_vectors);
   EXPECT_EQ(r.axes[0].violations, 0u);
+}
+
+TEST_F(RotationTest, AWindowGivesTheRotationOfTheTruncatedTrajectory) {
+  // frames 30, 33, …, 90 (t = 0.3 … 0.9, stride 3) of each replica against files holding only them,
+  // with exact rotation vectors (cumulative from the run start) and with vectors accumulated from
+  // the window's frames (the truncated file accumulates from its first frame: the same differences)
+  for (bool exact : {true, false}) {
+    std::vector<std::string> full, cut;
+    for (unsigned r = 0; r < 3; ++r) {
+      const auto rotors = free_rotors(40, 101, 0.01, 70 + r, exact);
+      full.push_back(file("full" + std::to_string(exact) + std::to_string(r) + ".h5"));
+      cut.push_back(file("cut" + std::to_string(exact) + std::to_string(r) + ".h5"));
+      rotors.write(full.back());
+      anisodyn::testing_support::frames_of(rotors, 30, 21, 3).write(cut.back());
+    }
+    auto analyse = [](const std::vector<std::string>& paths, const FrameWindow& w) {
+      RotationAnalysis a(RotationSettings{}, paths.size());
+      TrajectoryNeeds needs;
+      needs.orientations = true;
+      needs.optional_elements = {"rotation_vector"};
+      needs.window = w;
+      for_each_replica(paths, needs, [&](const Trajectory& t, std::size_t) { a.accumulate(t, -1); });
+      return a.compute();
+    };
+    const RotationResult windowed = analyse(full, anisodyn::testing_support::time_window(0.3, 0.9, 3)), truncated = analyse(cut, {});
+    ASSERT_EQ(windowed.lag, truncated.lag) << exact;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const auto &a = windowed.axes[k], &b = truncated.axes[k];
+      for (std::size_t c = 0; c < a.msad.size(); ++c) {
+        EXPECT_NEAR(a.msad[c], b.msad[c], 1e-12 * b.msad[c]) << exact << " axis " << k;
+        EXPECT_EQ(a.c1[c], b.c1[c]) << exact << " axis " << k;
+      }
+      EXPECT_EQ(a.exact_rotation_vectors, exact);
+      EXPECT_EQ(a.intervals, b.intervals);
+    }
+  }
 }
 
 }  // namespace

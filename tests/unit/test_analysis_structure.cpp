@@ -11,6 +11,9 @@
 #include "anisodyn/analysis/pair_structure.hpp"
 #include "anisodyn/core/error.hpp"
 #include "input_error.hpp"
+#include "scratch_dir.hpp"
+#include "synthetic_trajectory.hpp"
+#include "time_window.hpp"
 
 using namespace anisodyn;
 using namespace anisodyn::analysis;
@@ -178,18 +181,34 @@ TEST(PairStructure, SimpleCubicLatticeShellsAndCoordinationNumbers) {
   EXPECT_NEAR(perp(b3), 0, 1e-12);
 }
 
-TEST(PairStructure, FrameSelectionAndSingleReplicaBlocks) {
+class PairStructureFileTest : public anisodyn::testing_support::ScratchDirTest {
+ protected:
+  PairStructureFileTest() : ScratchDirTest("structure") {}
+};
+
+TEST_F(PairStructureFileTest, TimeWindowWithStrideAndSingleReplicaBlocks) {
   const Vec3 box(5, 5, 5);
   std::mt19937_64 rng(3);
-  PairStructureSettings s;
-  s.frames.first = 2;
-  s.frames.stride = 3;  // frames 2, 5, …, 59: 20 frames in 10 blocks
-  PairStructureAnalysis a(s, 1);
-  a.accumulate(make_trajectory(uniform_gas(60, 100, box, rng), box, {}, kOne));
+  anisodyn::testing_support::SyntheticTrajectory syn;
+  syn.box = box;
+  syn.time = anisodyn::testing_support::linear_times(60, 0.5);
+  syn.position = uniform_gas(60, 100, box, rng);
+  syn.table = kOne;
+  const std::string path = file("gas.h5");
+  syn.write(path);
+  TrajectoryNeeds needs;
+  needs.positions = true;
+  needs.window = anisodyn::testing_support::time_window(1.0, std::nullopt, 3);  // frames 2, 5, …, 59: 20 frames in 10 blocks
+  PairStructureAnalysis a(PairStructureSettings{}, 1);
+  for_each_replica({path}, needs, [&](const Trajectory& t, std::size_t) { a.accumulate(t); });
   const auto r = a.compute();
   EXPECT_EQ(r.frames_per_replica, 20u);
   EXPECT_EQ(r.samples, 10u);
   EXPECT_TRUE(r.blocks);
+  // the old frame-index key is refused with a pointer to the window
+  nlohmann::json j = {{"frames", {{"first", 2}}}};
+  io::ConfigNode cfg(j, "structure.json");
+  EXPECT_EQ(input_error([&] { parse_structure_settings(cfg); }).json_path(), "frames");
 }
 
 TEST(PairStructure, DirectorInAnIsotropicBoxIsAnInputError) {

@@ -6,6 +6,7 @@
 #include "anisodyn/analysis/van_hove.hpp"
 #include "scratch_dir.hpp"
 #include "synthetic_trajectory.hpp"
+#include "time_window.hpp"
 
 using namespace anisodyn;
 using namespace anisodyn::analysis;
@@ -63,6 +64,35 @@ TEST_F(VanHoveTest, GaussianWalksHaveGaussianVanHoveFunctions) {
     }
     if (D.z() == D.x()) check_gaussian(paths, {"tot"}, D);
     else check_gaussian(paths, {"x", "z", "perp"}, D);
+  }
+}
+
+TEST_F(VanHoveTest, AWindowGivesTheVanHoveFunctionOfTheTruncatedTrajectory) {
+  std::vector<std::string> full, cut;
+  for (unsigned r = 0; r < 2; ++r) {
+    const auto walk = anisodyn::testing_support::gaussian_walks(100, anisodyn::testing_support::linear_times(81, 0.1), Vec3(1, 1, 1), 30 + r);
+    full.push_back(file("full" + std::to_string(r) + ".h5"));
+    cut.push_back(file("cut" + std::to_string(r) + ".h5"));
+    walk.write(full.back());
+    anisodyn::testing_support::frames_of(walk, 40, 41).write(cut.back());  // t = 4 … 8
+  }
+  auto analyse = [](const std::vector<std::string>& paths, const FrameWindow& w) {
+    VanHoveSettings s;
+    s.times = {0.5, 3.0};
+    s.components = {"tot", "z"};
+    VanHoveAnalysis a(s, paths.size());
+    TrajectoryNeeds needs;
+    needs.positions = true;
+    needs.window = w;
+    for_each_replica(paths, needs, [&](const Trajectory& t, std::size_t) { a.accumulate(t, -1); });
+    return a.compute();
+  };
+  const auto windowed = analyse(full, anisodyn::testing_support::time_window(4.0, 8.0)), truncated = analyse(cut, {});
+  ASSERT_EQ(windowed.size(), truncated.size());
+  for (std::size_t k = 0; k < windowed.size(); ++k) {
+    EXPECT_EQ(windowed[k].time, truncated[k].time);
+    EXPECT_EQ(windowed[k].g, truncated[k].g);
+    EXPECT_EQ(windowed[k].mean_square, truncated[k].mean_square);
   }
 }
 

@@ -5,7 +5,8 @@
 //    beads shifted (brute force), and the symmetric coupling at the centre of diffusion;
 //  - the extrapolated sphere against Stokes–Einstein and Stokes–Einstein–Debye (0.5 %), a prolate
 //    spheroid against Perrin (1 % translation, 2 % rotation; tests/support/hydro_theory.hpp);
-//  - shells lie on the surface they model; bad shell series are refused;
+//  - shells of both constructions lie on the surface they model; the cell-centre sphere also
+//    matches Stokes–Einstein–Debye within 0.5 %; bad shell series are refused;
 //  - species files round-trip through JSON and HDF5 and feed species definitions.
 #include <gtest/gtest.h>
 
@@ -44,6 +45,20 @@ std::vector<Vec3> irregular_beads(std::size_t n, unsigned seed) {
     if (far) out.push_back(p);
   }
   return out;
+}
+
+/// A shell at σ_b = 0.1: every bead on the surface, nearest-neighbour spacing ≈ 2σ_b (no bead is
+/// isolated and none coincide).
+void expect_beads_on_surface_about_2_sigma_apart(const HydroShape& s, const std::vector<Vec3>& beads) {
+  ASSERT_GT(beads.size(), 50u);
+  for (const auto& b : beads) ASSERT_TRUE(on_surface(s, b, 1e-9)) << b.transpose();
+  for (std::size_t i = 0; i < beads.size(); i += 7) {
+    double nearest = 1e9;
+    for (std::size_t j = 0; j < beads.size(); ++j)
+      if (j != i) nearest = std::min(nearest, (beads[i] - beads[j]).norm());
+    EXPECT_GT(nearest, 0.02);
+    EXPECT_LT(nearest, 0.4);
+  }
 }
 
 }  // namespace
@@ -133,18 +148,44 @@ TEST(ShellSurface, BeadsLieOnTheSurfaceAndKeepTheMirrorSymmetry) {
                                        HydroShape::sphere_union({Vec3(0, 0, -0.6), Vec3(0, 0, 0), Vec3(0, 0, 0.6)}, {0.5, 0.5, 0.5})};
   for (const auto& s : shapes) {
     const auto beads = shell_beads(s, 0.1);
-    ASSERT_GT(beads.size(), 50u);
-    for (const auto& b : beads) ASSERT_TRUE(on_surface(s, b, 1e-9)) << b.transpose();
-    // Nearest-neighbour spacing ≈ 2σ_b: no bead is isolated and none coincide.
-    for (std::size_t i = 0; i < beads.size(); i += 7) {
-      double nearest = 1e9;
-      for (std::size_t j = 0; j < beads.size(); ++j)
-        if (j != i) nearest = std::min(nearest, (beads[i] - beads[j]).norm());
-      EXPECT_GT(nearest, 0.02);
-      EXPECT_LT(nearest, 0.4);
-    }
+    expect_beads_on_surface_about_2_sigma_apart(s, beads);
     if (s.kind != HydroShapeKind::Ellipsoid || s.semi_axes.x() == s.semi_axes.y())
       EXPECT_EQ(find_mirror_symmetry(beads, 1e-9).operations.size(), 8u);
+  }
+}
+
+TEST(ShellSurface, CellCentreBeadsLieOnTheSurfaceOffTheEdgesAndKeepTheMirrorSymmetry) {
+  const std::vector<HydroShape> shapes{HydroShape::sphere(2.0), HydroShape::ellipsoid(Vec3(0.5, 1.0, 3.0)),
+                                       HydroShape::cylinder(4.0, 1.0), HydroShape::cuboid(Vec3(1.0, 3.4641, 12.0))};
+  for (const auto& s : shapes) {
+    const auto beads = cell_centre_beads(s, 0.1);
+    expect_beads_on_surface_about_2_sigma_apart(s, beads);
+    EXPECT_EQ(find_mirror_symmetry(beads, 1e-9).operations.size(), 8u);
+  }
+  // Cuboid cells: the nearest bead to an edge is half a cell (σ_b) from each face meeting there.
+  const HydroShape cube = HydroShape::cuboid(Vec3::Ones());
+  for (const auto& b : cell_centre_beads(cube, 0.125)) {
+    const Vec3 gap = Vec3::Constant(0.5) - b.cwiseAbs();
+    int on_faces = 0;
+    double off_face = 1.0;
+    for (int a = 0; a < 3; ++a) {
+      if (gap[a] < 1e-12) ++on_faces;
+      else off_face = std::min(off_face, gap[a]);
+    }
+    EXPECT_EQ(on_faces, 1) << b.transpose();
+    EXPECT_GE(off_face, 0.125 - 1e-12) << b.transpose();  // cells are 0.25 wide: the first centre is 0.125 in
+  }
+  EXPECT_EQ(cell_centre_beads(cube, 0.125).size(), 6u * 16u);
+  EXPECT_THROW(cell_centre_beads(HydroShape::spherocylinder(2.0, 1.0), 0.1), InputError);
+}
+
+TEST(DiffusionTensor, CellCentreSphereMatchesStokesEinsteinAndDebye) {
+  const HydroShape s = HydroShape::sphere(1.0);
+  const auto r = compute_diffusion_tensor(s, choose_bead_radii(s, {5, 3000, 2.0}, &cell_centre_beads), {}, nullptr,
+                                          &cell_centre_beads);
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_LT(relative_difference(r.D_trans()[a], theory::stokes_einstein_diffusion(0.5)), 0.005);
+    EXPECT_LT(relative_difference(r.D_rot()[a], theory::stokes_einstein_debye_rotational_diffusion(0.5)), 0.005);
   }
 }
 

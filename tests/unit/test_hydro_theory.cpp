@@ -165,6 +165,28 @@ TEST(HydroTheorySpheroid, TriaxialFrictionIsInvariantUnderRelabellingOfAxes) {
   EXPECT_LT(t[1], t[0]);
 }
 
+// ---- capacitance ------------------------------------------------------------------------------------
+
+TEST(HydroTheoryCapacitance, SpheroidClosedFormsMatchTheEllipsoidIntegralAndTheDiskLimit) {
+  EXPECT_NEAR(spheroid_capacitance(1.3, 1.3), 1.3, 1e-15);
+  EXPECT_NEAR(ellipsoid_capacitance(1.3, 1.3, 1.3) / 1.3, 1.0, 1e-10);
+  for (double a : {0.05, 0.3, 0.9, 1.1, 3.0, 10.0}) {
+    EXPECT_NEAR(spheroid_capacitance(a, 1.0) / ellipsoid_capacitance(1.0, 1.0, a), 1.0, 1e-10) << "a = " << a;
+  }
+  // Thin disk of radius c: C = 2c/π; needle of half-length a: C → a/ln(2a/c).
+  EXPECT_NEAR(spheroid_capacitance(1e-9, 1.0) / (2.0 / kPi), 1.0, 1e-8);
+  EXPECT_NEAR(spheroid_capacitance(1e6, 1.0) * std::log(2e6) / 1e6, 1.0, 1e-6);
+}
+
+TEST(HydroTheoryCapacitance, EllipsoidHydrodynamicRadiusEqualsItsCapacitance) {
+  // R_h = 1/(6πη D̄_t), D̄_t the mean of the three translational mobilities (Perrin), equals 2/χ.
+  for (const std::array<double, 3>& b : {std::array<double, 3>{1, 1, 1}, {0.5, 0.5, 3}, {2, 2, 0.2}, {0.5, 4, 6}}) {
+    const auto d = ellipsoid_diffusion(b[0], b[1], b[2]);
+    const double mean_mobility = (d.D_trans[0] + d.D_trans[1] + d.D_trans[2]) / 3.0;
+    EXPECT_NEAR(1.0 / (6.0 * kPi * mean_mobility) / ellipsoid_capacitance(b[0], b[1], b[2]), 1.0, 1e-9);
+  }
+}
+
 // ---- Tirado–García de la Torre cylinder table (spec 70 §6.2, k_BT = 1) ------------------------------
 
 TEST(HydroTheoryCylinder, TiradoGarciaDeLaTorreTableOfSpec70Section6_2) {

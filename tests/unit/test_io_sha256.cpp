@@ -1,4 +1,5 @@
-// io: SHA-256 against the FIPS 180-2 test vectors, file hashing and provenance records.
+// io: SHA-256 against the FIPS 180-2 test vectors and the NIST 1 GiB vector, streamed file hashing
+// against GNU coreutils, and provenance records.
 #include <gtest/gtest.h>
 
 #include "scratch_dir.hpp"
@@ -40,6 +41,17 @@ TEST(Sha256, Fips180_2Vectors) {
             "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
 }
 
+// NIST's "extremely long message" vector (1 GiB; its bit length needs more than 32 bits), fed in
+// 1 MiB pieces as a file would be.
+TEST(Sha256, NistGigabyteVectorStreamed) {
+  const std::string pattern = "abcdefghbcdefghicdefghijdefghijkefghijklfghijklmghijklmnhijklmno";
+  std::string piece;
+  while (piece.size() < (1u << 20)) piece += pattern;
+  io::Sha256 h;
+  for (int i = 0; i < 1024; ++i) h.update(piece);
+  EXPECT_EQ(h.hex_digest(), "50e72a0e26442fe2552dc3938ac58658228c0cbfb1d2ca872ae435266fcd055e");
+}
+
 TEST(Sha256, EmptyMessageAndPaddingBoundaries) {
   EXPECT_EQ(io::sha256_hex(""), "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
   // 55, 56 and 64 bytes straddle the one-block / two-block padding boundary; incremental hashing in
@@ -61,6 +73,21 @@ TEST_F(Scratch, FileHashEqualsHashOfContents) {
   write_file(file("abc.txt"), "abc");
   EXPECT_EQ(io::sha256_hex_of_file(file("abc.txt")),
             "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+}
+
+// A file of several read chunks with a partial last one. Reference digest from GNU coreutils
+// `sha256sum` (its own implementation, not OpenSSL's) of 2^24 + 3 bytes 'a'.
+TEST_F(Scratch, LargeFileStreamedInChunks) {
+  write_file(file("a.bin"), std::string((1u << 24) + 3, 'a'));
+  EXPECT_EQ(io::sha256_hex_of_file(file("a.bin")), "5e7cd5757ad6251fe3d2ec6b40eee62825bf94d13d835891016ef8c85c03ed8a");
+}
+
+TEST(Sha256, DigestIsStableAcrossCalls) {
+  io::Sha256 h;
+  h.update("abc");
+  const std::string first = h.hex_digest();
+  EXPECT_EQ(h.hex_digest(), first);
+  EXPECT_EQ(first, "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
 }
 
 TEST_F(Scratch, MissingFileIsAnInputError) {

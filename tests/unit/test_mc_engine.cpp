@@ -1,15 +1,21 @@
 // MC engine against closed forms: ideal-gas NPT, a free cuboid in the orientational field, free
-// rotation (uniform orientations), and hard-sphere sweeps that never create an overlap.
+// rotation (uniform orientations), and hard-sphere sweeps that never create an overlap; a rejected
+// squeeze or volume move leaves every position bit-identical. The
+// sampled averages are compared within 4 standard errors, each bounded from above by
+// markov_chain_error_bound (tests/support) with the chain's crossing time derived from its moves.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include "anisodyn/core/error.hpp"
 #include "anisodyn/core/statistics.hpp"
 #include "anisodyn/mc/mc_engine.hpp"
+#include "markov_chain_error_bound.hpp"
 
 using namespace anisodyn;
+using anisodyn::testing_support::markov_chain_error_bound;
 
 namespace {
 
@@ -49,6 +55,17 @@ bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
 }
 
+/// Cycles for ln V to cross its width: Var ln V = ψ₁(N + 1) < 1/N for p(V) ∝ V^N e^{−βPV}, against
+/// one volume move per cycle (on average) of ln V uniform in ±δ, accepted with probability A.
+double log_volume_crossing(std::size_t n, double delta, double acceptance) {
+  return (1.0 / static_cast<double>(n)) / (acceptance * delta * delta / 3.0);
+}
+
+/// 1/(6 D_r) of a body axis under McEngine's rotations: a rotation vector uniform in [−a, a]³
+/// tilts the axis by ⟨θ_⊥²⟩ = 2a²/3, tried in half the moves of a lone particle (one per cycle)
+/// and accepted with probability A: ⟨Δu²⟩ = 4 D_r per cycle gives D_r = A a²/12.
+double rotation_crossing(double a, double acceptance) { return 1.0 / (6.0 * acceptance * a * a / 12.0); }
+
 State single_cuboid() {
   State s;
   s.box = Box(Vec3::Constant(100.0));
@@ -76,7 +93,11 @@ TEST(McEngine, IdealGasNptMeanVolumeIsExact) {
   const MeanError m = block_average(v);
   const double exact = (n + 1) / beta_p;
   EXPECT_NEAR(m.mean, exact, 4.0 * m.error) << "mean " << m.mean << " ± " << m.error;
-  EXPECT_LT(m.error, 0.02 * exact);  // the test has power
+  // Var V = (N + 1)/(βP)² for the Gamma distribution of V
+  const double acceptance = MoveCounters::ratio(mc.counters().volume_accepted, mc.counters().volume_tried);
+  const double bound = markov_chain_error_bound((n + 1) / (beta_p * beta_p), log_volume_crossing(n, 0.5, acceptance), v.size());
+  std::printf("<V> = %.4f ± %.4f (bound %.4f, tau_int %.1f cycles, exact %.4f)\n", m.mean, m.error, bound, m.tau_int, exact);
+  EXPECT_LT(m.error, bound);
 }
 
 TEST(McEngine, PerAxisBoxMovesSampleTheSameIdealGas) {
@@ -93,6 +114,11 @@ TEST(McEngine, PerAxisBoxMovesSampleTheSameIdealGas) {
   }
   const MeanError m = block_average(v);
   EXPECT_NEAR(m.mean, (n + 1) / beta_p, 4.0 * m.error) << "mean " << m.mean << " ± " << m.error;
+  // the same Gamma distribution of V: one edge scaled by e^{Δ ln V} changes ln V as much
+  const double acceptance = MoveCounters::ratio(mc.counters().volume_accepted, mc.counters().volume_tried);
+  const double bound = markov_chain_error_bound((n + 1) / (beta_p * beta_p), log_volume_crossing(n, 0.5, acceptance), v.size());
+  std::printf("<V> = %.4f ± %.4f (bound %.4f, tau_int %.1f cycles)\n", m.mean, m.error, bound, m.tau_int);
+  EXPECT_LT(m.error, bound);
 }
 
 TEST(McEngine, FreeCuboidInFieldFollowsBoltzmann) {
@@ -113,16 +139,25 @@ TEST(McEngine, FreeCuboidInFieldFollowsBoltzmann) {
     const double cw = s.particles.orientation(0).toRotationMatrix().col(1).dot(field.direction);
     p2.push_back(1.5 * cw * cw - 0.5);
   }
-  double num = 0.0, den = 0.0;
+  double num = 0.0, second = 0.0, den = 0.0;
   const int q = 200000;
   for (int k = 0; k < q; ++k) {
     const double c = -1.0 + (k + 0.5) * 2.0 / q;
     const double w = std::exp(0.5 * eps * (3.0 * c * c - 1.0));
-    num += (1.5 * c * c - 0.5) * w;
+    const double p = 1.5 * c * c - 0.5;
+    num += p * w;
+    second += p * p * w;
     den += w;
   }
   const MeanError m = block_average(p2);
   EXPECT_NEAR(m.mean, num / den, 4.0 * m.error) << "MC " << m.mean << " ± " << m.error << " exact " << num / den;
+  // the exact variance of P2 in the field (same quadrature), the rotations' acceptance in the field
+  const double variance = second / den - (num / den) * (num / den);
+  const double acceptance = MoveCounters::ratio(mc.counters().rotate_accepted[0], mc.counters().rotate_tried[0]);
+  const double bound = markov_chain_error_bound(variance, rotation_crossing(0.6, acceptance), p2.size());
+  std::printf("<P2> = %.5f ± %.5f (bound %.5f, tau_int %.1f cycles, acceptance %.3f, exact %.5f)\n", m.mean, m.error, bound, m.tau_int,
+              acceptance, num / den);
+  EXPECT_LT(m.error, bound);
 }
 
 TEST(McEngine, FreeCuboidOrientationsBecomeUniform) {
@@ -135,9 +170,13 @@ TEST(McEngine, FreeCuboidOrientationsBecomeUniform) {
     const Mat3 r = s.particles.orientation(0).toRotationMatrix();
     for (int k = 0; k < 3; ++k) p2[k].push_back(1.5 * r(2, k) * r(2, k) - 0.5);
   }
+  // uniform orientations: Var P2 = 1/5; every rotation of a lone particle without a field is accepted
+  const double bound = markov_chain_error_bound(0.2, rotation_crossing(0.8, 1.0), p2[0].size());
   for (int k = 0; k < 3; ++k) {
     const MeanError m = block_average(p2[k]);
     EXPECT_NEAR(m.mean, 0.0, 4.0 * m.error) << "axis " << k;
+    std::printf("axis %d: <P2> = %+.5f ± %.5f (bound %.5f, tau_int %.1f cycles)\n", k, m.mean, m.error, bound, m.tau_int);
+    EXPECT_LT(m.error, bound) << "axis " << k;
   }
 }
 

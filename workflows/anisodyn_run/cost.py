@@ -49,16 +49,35 @@ def cycles(job):
     return 0
 
 
+def job_cost(job, jobs):
+    """(trial moves, seconds of one core) of an engine job; None for a tool the model does not cover."""
+    if job.tool not in ("mc", "dmc"):
+        return None
+    moves = particles(job, jobs) * cycles(job)
+    rate = THROUGHPUT["dmc_dipolar" if job.tool == "dmc" and "dipoles" in job.params.get("field", {}) else job.tool]
+    return moves, moves / rate
+
+
 def estimate(jobs):
     """{stage: (jobs, trial moves, seconds)} for the engine stages."""
     out = {}
     for job in jobs.values():
-        if job.tool not in ("mc", "dmc"):
+        cost = job_cost(job, jobs)
+        if cost is None:
             continue
-        moves = particles(job, jobs) * cycles(job)
-        rate = THROUGHPUT["dmc_dipolar" if job.tool == "dmc" and "dipoles" in job.params.get("field", {}) else job.tool]
         n, m, s = out.get(job.stage, (0, 0, 0.0))
-        out[job.stage] = (n + 1, m + moves, s + moves / rate)
+        out[job.stage] = (n + 1, m + cost[0], s + cost[1])
+    return out
+
+
+def planned_seconds(jobs, ids):
+    """{job id: seconds of one core} from the model, for the given jobs it covers (a plan of zero
+    trial moves means the model could not size the job)."""
+    out = {}
+    for jid in ids:
+        cost = job_cost(jobs[jid], jobs)
+        if cost is not None and cost[1] > 0:
+            out[jid] = cost[1]
     return out
 
 

@@ -18,6 +18,7 @@ import subprocess
 import sys
 import time
 
+from . import cost
 from .jobdb import atomic_write_text
 from .manifest import ENGINE_TOOLS
 
@@ -70,32 +71,61 @@ def write_config(job, campaign):
 
 
 class Progress:
-    """Campaign progress on stderr: counts, elapsed time and an ETA from the mean duration of the
-    jobs of each stage finished so far (jobs run in parallel over the workers)."""
+    """Campaign progress on stderr: counts, elapsed time and an ETA.
 
-    def __init__(self, study, total, workers, quiet):
+    The ETA spreads the expected remaining seconds of every unfinished job over the workers (and is
+    never less than the longest of them). A job is expected to take the mean duration of the
+    finished jobs of its stage. Before any job of its stage has finished, an engine job takes the
+    cost model's plan (cost.py), scaled by how long the finished jobs of the same tool took against
+    their plan; a job the model does not cover takes the mean of the finished uncovered jobs. The
+    first jobs to finish are configurations (milliseconds): extrapolating from them alone made the
+    ETA read 0:00 until the first engine job finished."""
+
+    def __init__(self, study, total, workers, quiet, planned):
         self.study, self.total, self.workers, self.quiet = study, total, workers, quiet
+        self.planned = planned            # job id -> seconds of one core, from the cost model
         self.t0, self.last = time.time(), 0.0
-        self.durations = {}
+        self.durations = {}               # stage -> seconds of its finished jobs
+        self.against_plan = {}            # tool -> [seconds taken, seconds planned] of its finished planned jobs
+        self.unplanned = []               # seconds of finished jobs the model does not cover
 
-    def eta(self, remaining_stages, running_elapsed):
-        known = [d for ds in self.durations.values() for d in ds]
-        if not known:
+    def record(self, job, seconds):
+        self.durations.setdefault(job.stage, []).append(seconds)
+        plan = self.planned.get(job.id)
+        if plan is None:
+            self.unplanned.append(seconds)
+        else:
+            sums = self.against_plan.setdefault(job.tool, [0.0, 0.0])
+            sums[0] += seconds
+            sums[1] += plan
+
+    def expected(self, job):
+        """Expected seconds of a job, or None when nothing is known about it yet."""
+        ds = self.durations.get(job.stage)
+        if ds:
+            return sum(ds) / len(ds)
+        plan = self.planned.get(job.id)
+        if plan is not None:
+            taken, planned = self.against_plan.get(job.tool, (0.0, 0.0))
+            return plan * (taken / planned if planned > 0 else 1.0)
+        return sum(self.unplanned) / len(self.unplanned) if self.unplanned else None
+
+    def eta(self, remaining, running):
+        """Seconds until the campaign ends, from the jobs not started and (job, elapsed) of the running
+        ones; None when no job's duration can be estimated yet."""
+        expected = [self.expected(job) for job in remaining] + [self.expected(job) for job, _ in running]
+        if expected and all(e is None for e in expected):
             return None
-        mean_all = sum(known) / len(known)
-        work = 0.0
-        for stage in remaining_stages:
-            ds = self.durations.get(stage)
-            work += sum(ds) / len(ds) if ds else mean_all
-        work -= sum(running_elapsed)
-        return max(work, 0.0) / self.workers
+        elapsed = [0.0] * len(remaining) + [t for _, t in running]
+        left = [max((e or 0.0) - t, 0.0) for e, t in zip(expected, elapsed)]
+        return max(sum(left) / self.workers, max(left, default=0.0))
 
-    def show(self, counts, remaining_stages, running_elapsed, force=False):
+    def show(self, counts, remaining, running, force=False):
         now = time.time()
         if self.quiet or (not force and now - self.last < 2.0):
             return
         self.last = now
-        eta = self.eta(remaining_stages, running_elapsed)
+        eta = self.eta(remaining, running)
         eta_text = "?" if eta is None else _clock(eta)
         print(f"[{self.study}] done {counts['done']}/{self.total} (up to date {counts['skipped']}), running {counts['running']}, "
               f"failed {counts['failed']}, left {counts['left']}; elapsed {_clock(now - self.t0)}, ETA {eta_text}",
@@ -118,7 +148,7 @@ class LocalRun:
         self.state = {jid: "external" for jid in jobs if jid not in selected}
         self.waiting = [jid for jid in jobs if jid in selected]
         self.running = {}  # jid -> (Popen, start time, log files)
-        self.progress = Progress(study, len(self.waiting), workers, quiet)
+        self.progress = Progress(study, len(self.waiting), workers, quiet, cost.planned_seconds(jobs, self.waiting))
         self.interrupted = False
 
     def stop(self, _signum=None, _frame=None):
@@ -207,7 +237,7 @@ class LocalRun:
             atomic_write_text(os.path.join(self.campaign, job.directory, job.stem + ".stamp.json"),
                               json.dumps(stamp_of(job, self.jobs, self.db, self.campaign), sort_keys=True))
             self.state[job.id] = "done"
-            self.progress.durations.setdefault(job.stage, []).append(seconds)
+            self.progress.record(job, seconds)
         elif rc in (130, -signal.SIGTERM, -signal.SIGINT) and self.interrupted:
             self.state[job.id] = "interrupted"
         else:
@@ -217,8 +247,9 @@ class LocalRun:
         self.db.save()
 
     def show_progress(self, force):
-        remaining = [self.jobs[j].stage for j in self.waiting] + [self.jobs[j].stage for j in self.running]
-        self.progress.show(self.counts(), remaining, [time.time() - t for _, t, _ in self.running.values()], force=force)
+        now = time.time()
+        running = [(self.jobs[j], now - t) for j, (_, t, _) in self.running.items()]
+        self.progress.show(self.counts(), [self.jobs[j] for j in self.waiting], running, force=force)
 
     def run(self):
         old = {s: signal.signal(s, self.stop) for s in (signal.SIGINT, signal.SIGTERM)}

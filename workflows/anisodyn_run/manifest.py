@@ -10,7 +10,8 @@ Schema (docs/manifests.md):
   stages       [{name, tool, params, inputs, replicate, description}]
   report       {title, scalars: [...], plots: [...]} (report.py)
 References in params: "${grid.x}" (a grid var), "${replica}" (the replica index, replicated stages
-only), "${study}". A string that is exactly one reference takes the value's type.
+only), "${study}". A string that is exactly one reference takes the value's type; an object key
+whose value is exactly a reference to a null grid value is left out.
 """
 import json
 import re
@@ -51,7 +52,8 @@ def merge(base, over):
 
 
 def is_scalar(v):
-    return isinstance(v, (str, int, float, bool)) and v is not None
+    """A grid value: a number, string, boolean or null (null leaves out the key that refers to it)."""
+    return v is None or isinstance(v, (str, int, float, bool))
 
 
 def format_value(v):
@@ -84,6 +86,7 @@ def validate(m, tool_exists):
             raise ManifestError(f"defaults.{tool}", "an object of parameters for that tool", block)
     order = validate_stages(m, tool_exists)
     validate_report(m)
+    validate_everything_acts(m)
     return order
 
 
@@ -98,7 +101,7 @@ def validate_grid(m):
             raise ManifestError(f"grid.{var}", "a non-empty list of values", values)
         for i, v in enumerate(values):
             if not is_scalar(v):
-                raise ManifestError(f"grid.{var}[{i}]", "a number, string or boolean", v)
+                raise ManifestError(f"grid.{var}[{i}]", "a number, string, boolean or null", v)
             if "/" in format_value(v) or format_value(v) in ("", ".", ".."):
                 raise ManifestError(f"grid.{var}[{i}]", "a value usable in a directory name (no '/')", v)
     zipped = m.get("zip", [])
@@ -229,9 +232,12 @@ def referenced_vars(value):
 
 
 def substitute(value, point, replica, study):
-    """value with every reference replaced; a string that is exactly one reference takes its type."""
+    """value with every reference replaced; a string that is exactly one reference takes its type.
+    A key whose value is exactly a reference to a null grid value is left out, so that a zipped
+    variable can drop a key at the grid points whose mode has no use for it (tools refuse such keys)."""
     if isinstance(value, dict):
-        return {k: substitute(v, point, replica, study) for k, v in value.items()}
+        out = {k: substitute(v, point, replica, study) for k, v in value.items()}
+        return {k: v for k, v in out.items() if not (v is None and isinstance(value[k], str) and REFERENCE.fullmatch(value[k]))}
     if isinstance(value, list):
         return [substitute(v, point, replica, study) for v in value]
     if not isinstance(value, str):
@@ -249,6 +255,19 @@ def substitute(value, point, replica, study):
 
 
 THEORY_KINDS = {"constant", "power", "exponential", "free_diffusion", "wertheim"}
+# The keys each report item reads (report.py): anything else would be silently ignored.
+SCALAR_BLOCK_KEYS = {"stage", "names", "caption"}
+PLOT_KEYS = {"name", "stage", "select", "log", "xlabel", "ylabel", "title", "caption", "theory"}
+TABLE_PLOT_KEYS = PLOT_KEYS | {"table", "x", "y", "errors"}
+SCALAR_PLOT_KEYS = PLOT_KEYS | {"scalar", "x", "series"}
+THEORY_KEYS = {"constant": {"value"}, "power": {"prefactor", "exponent"}, "exponential": {"tau", "amplitude"},
+               "free_diffusion": {"species", "component"}, "wertheim": {"scalar"}}
+
+
+def check_keys(item, allowed, path, why):
+    for k in item:
+        if k not in allowed and not k.startswith("_"):
+            raise ManifestError(f"{path}.{k}", f"no '{k}': it has no effect {why} (keys here: {', '.join(sorted(allowed))})")
 
 
 def validate_report(m):
@@ -273,11 +292,23 @@ def validate_report(m):
             if item.get("stage") not in stages:
                 raise ManifestError(f"{p}.stage", "the name of a stage of this manifest", item.get("stage"))
             if key == "scalars":
+                check_keys(item, SCALAR_BLOCK_KEYS, p, "in a scalars block")
                 if not isinstance(item.get("names", ["*"]), list):
                     raise ManifestError(f"{p}.names", "a list of scalar names (wildcards allowed)", item.get("names"))
                 continue
             if ("table" in item) == ("scalar" in item):
                 raise ManifestError(p, "either 'table' (curves against a column) or 'scalar' (against a grid variable)")
+            if "table" in item:
+                check_keys(item, TABLE_PLOT_KEYS, p, "in a table plot")
+            else:
+                check_keys(item, SCALAR_PLOT_KEYS, p, "in a scalar plot")
+            select = item.get("select", {})
+            if not isinstance(select, dict):
+                raise ManifestError(f"{p}.select", "an object {grid variable: value}", select)
+            for var in select:
+                if var not in grid:
+                    raise ManifestError(f"{p}.select.{var}", f"no '{var}': it has no effect, select picks values of grid variables ("
+                                        + (", ".join(grid) or "the manifest has none") + ")")
             if "table" in item and (not isinstance(item.get("y"), list) or not item["y"]):
                 raise ManifestError(f"{p}.y", "a non-empty list of column names", item.get("y"))
             if "scalar" in item:
@@ -291,3 +322,21 @@ def validate_report(m):
                 if not isinstance(t, dict) or t.get("kind") not in THEORY_KINDS:
                     raise ManifestError(f"{p}.theory[{j}].kind", "one of " + ", ".join(sorted(THEORY_KINDS)),
                                         t.get("kind") if isinstance(t, dict) else t)
+                check_keys(t, THEORY_KEYS[t["kind"]] | {"kind", "label"}, f"{p}.theory[{j}]", f"on a '{t['kind']}' line")
+
+
+def validate_everything_acts(m):
+    """A grid variable no stage refers to, or defaults for a tool no stage runs, would change nothing."""
+    stages = m["stages"]
+    used_tools = {st["tool"] for st in stages}
+    for tool in m.get("defaults", {}):
+        if tool not in used_tools:
+            raise ManifestError(f"defaults.{tool}", f"no defaults for '{tool}': it has no effect, no stage runs that tool "
+                                                    f"(stages run: {', '.join(sorted(used_tools))})")
+    referenced = set()
+    for st in stages:
+        referenced |= referenced_vars(merge(m.get("defaults", {}).get(st["tool"], {}), st.get("params", {})))
+    for var in m.get("grid", {}):
+        if var not in referenced:
+            raise ManifestError(f"grid.{var}", f"no grid variable '{var}': it has no effect, no stage's params refer to it "
+                                               f"(${{grid.{var}}})")

@@ -5,6 +5,7 @@ draws the configured plots with the theory overlays of spec 70, and lists every 
 Written into report.partial/ and renamed, so a report is either complete or absent."""
 import csv
 import fnmatch
+import json
 import math
 import os
 import shutil
@@ -12,7 +13,7 @@ import sys
 import time
 
 from .expand import grid_points
-from .manifest import format_value
+from .manifest import ENGINE_TOOLS, format_value
 
 EXIT_FAILED = 3
 
@@ -45,6 +46,20 @@ def read_table(path, table):
         if table not in f:
             raise KeyError(f"{path} has no table '{table}' (tables: {', '.join(k for k in f if k not in ('scalars',) and hasattr(f[k], 'keys'))})")
         return {k: f[table][k][...] for k in f[table]}, {k: _attr(f[table][k], "units") for k in f[table]}
+
+
+def window_text(path):
+    """The time window a stage analysed (its output's root attribute `window`), or None."""
+    import h5py
+    with h5py.File(path, "r") as f:
+        if "window" not in f.attrs:
+            return None
+        w = json.loads(_attr(f, "window"))
+    span = f"t = {format_value(w['from']) if w['from'] is not None else 'start'} … {format_value(w['to']) if w['to'] is not None else 'end'}"
+    frames = f"{w['frames']} frames" + (f", stride {w['stride']}" if w["stride"] > 1 else "")
+    if w["frames"]:
+        frames += f": {w['first_frame']}–{w['last_frame']} at t = {w['first_time']:.5g} … {w['last_time']:.5g}"
+    return f"Time window {span} ({frames})."
 
 
 def _attr(obj, name):
@@ -122,8 +137,39 @@ class Report:
             lines += ["## Plots", ""]
         for k, plot in enumerate(plots):
             lines += self.plot(plot, k)
+        lines += self.diffusion_sources()
         lines += self.all_scalars()
         return lines
+
+    def diffusion_sources(self):
+        """Where each species' diffusion tensors came from: the engine outputs' provenance records the
+        species file and entry (or "configuration" for values given in the stage's parameters)."""
+        import h5py
+        import json
+        rows = {}
+        for st in self.m["stages"]:
+            if st["tool"] not in ENGINE_TOOLS:
+                continue
+            for job in self.stage_jobs(st["name"]):
+                try:
+                    with h5py.File(self.path(job), "r") as f:
+                        text = f["parameters/provenance"][()] if "parameters/provenance" in f else b"{}"
+                except OSError:
+                    continue
+                sources = json.loads(text.decode() if isinstance(text, bytes) else text).get("diffusion_sources", {})
+                for species, origin in sources.items():
+                    if isinstance(origin, dict):
+                        where = f"`{origin['file']}`, entry `{origin['species']}`"
+                        reference = origin.get("source", "")
+                    else:
+                        where, reference = f"{origin} (stage `{st['name']}`)", ""
+                    rows[(point_text(job.point), species, where)] = reference
+        if not rows:
+            return []
+        lines = ["## Diffusion tensors", "", "Where each species' infinite-dilution diffusion tensors came from (provenance of the "
+                 "engine outputs).", "", "| grid point | species | taken from | published source |", "|---|---|---|---|"]
+        lines += [f"| {p} | {sp} | {w} | {ref} |" for (p, sp, w), ref in sorted(rows.items())]
+        return lines + [""]
 
     # --- tables ---------------------------------------------------------------------------
     def scalar_table(self, block, k):
@@ -173,7 +219,11 @@ class Report:
                     continue
                 if not scalars:
                     continue
-                lines += [f"### {st['name']} — {point_text(job.point)}", "", "| scalar | value ± SE | units | definition |", "|---|---|---|---|"]
+                lines += [f"### {st['name']} — {point_text(job.point)}", ""]
+                window = window_text(self.path(job))
+                if window:
+                    lines += [window, ""]
+                lines += ["| scalar | value ± SE | units | definition |", "|---|---|---|---|"]
                 for n, (v, e, u, d) in scalars.items():
                     lines.append(f"| {n} | {fmt(v, e)} | {u} | {d.replace('|', '/')} |")
                 lines.append("")

@@ -14,8 +14,11 @@ OrientationRule parse_orientation(std::optional<io::ConfigNode> node, const Shap
   OrientationRule rule;
   rule.body_axis = default_alignment_axis(shape);
   if (!node) return rule;
+  if (!shape.is_anisotropic()) node->fail("", "no orientation for a sphere (it has none: the block has no effect)");
   rule.mode = node->choice("mode", {"aligned", "random"}, "aligned") == "aligned" ? OrientationRule::Mode::Aligned
                                                                                    : OrientationRule::Mode::Random;
+  for (const char* key : {"axis", "director", "random_azimuth"})
+    node->reject_unless(rule.mode == OrientationRule::Mode::Aligned, key, "with random orientations (it shapes an aligned start)");
   const std::string axis = node->choice("axis", {"auto", "T", "W", "L"}, "auto");
   if (axis != "auto") rule.body_axis = axis == "T" ? 0 : axis == "W" ? 1 : 2;
   rule.director = node->vec3("director", Vec3::UnitZ());
@@ -26,13 +29,15 @@ OrientationRule parse_orientation(std::optional<io::ConfigNode> node, const Shap
 
 /// Merges the configuration's species into `table`: a name already present must describe the same
 /// species. Returns the index of each configured species in the table.
-std::map<std::string, int> merge_species(SpeciesTable& table, io::ConfigNode& cfg) {
+std::map<std::string, int> merge_species(SpeciesTable& table, io::ConfigNode& cfg, nlohmann::json& origins) {
   std::map<std::string, int> index;
   for (std::size_t s = 0; s < table.size(); ++s) index[table[s].name] = static_cast<int>(s);
   if (!cfg.has("species")) return index;
   auto nodes = cfg.objects("species");
   for (auto& n : nodes) {
-    Species sp = parse_species(n);
+    nlohmann::json origin;
+    Species sp = parse_species(n, &origin);
+    if (!origin.is_null()) origins[sp.name] = origin;
     auto it = index.find(sp.name);
     if (it == index.end()) {
       index[sp.name] = static_cast<int>(table.size());
@@ -46,11 +51,14 @@ std::map<std::string, int> merge_species(SpeciesTable& table, io::ConfigNode& cf
 
 }  // namespace
 
-State build_configuration(io::ConfigNode& cfg, const std::optional<State>& existing, std::uint64_t seed, std::uint64_t replica) {
+State build_configuration(io::ConfigNode& cfg, const std::optional<State>& existing, std::uint64_t seed, std::uint64_t replica,
+                          nlohmann::json* diffusion_origins) {
   State state;
   if (existing) state = *existing;
   if (!existing && !cfg.has("species")) cfg.fail("species", "expected the species table (an array of species)");
-  const auto index = merge_species(state.species, cfg);
+  nlohmann::json origins = nlohmann::json::object();
+  const auto index = merge_species(state.species, cfg, origins);
+  if (diffusion_origins) *diffusion_origins = origins;
 
   PlacementRequest req;
   req.counts.assign(state.species.size(), 0);
@@ -65,15 +73,16 @@ State build_configuration(io::ConfigNode& cfg, const std::optional<State>& exist
     req.counts[s] += static_cast<std::size_t>(e.positive_integer("count"));
     req.rules[s] = parse_orientation(e.optional_object("orientation"), state.species[s].shape);
   }
-  req.max_attempts_per_particle = static_cast<std::size_t>(cfg.positive_integer("max_attempts_per_particle", 10000));
-
   const std::string placement = cfg.choice("placement", {"lattice", "random"}, existing ? "random" : "lattice");
+  cfg.reject_unless(placement == "random", "max_attempts_per_particle", "with lattice placement (it bounds random insertion)");
+  req.max_attempts_per_particle = static_cast<std::size_t>(cfg.positive_integer("max_attempts_per_particle", 10000));
   if (existing) {
     if (placement != "random") cfg.fail("placement", "expected \"random\" when inserting into an existing configuration");
     if (cfg.has("box")) cfg.fail("box", "expected no box when inserting into an existing configuration (its box is kept)");
   } else {
     auto box = cfg.object("box");
     if (box.has("edges") == box.has("packing_fraction")) box.fail("", "expected either \"edges\" or \"packing_fraction\" (with optional \"aspect\")");
+    box.reject_unless(!box.has("edges"), "aspect", "with explicit edges (it shapes the box built from a packing fraction)");
     if (box.has("edges")) {
       state.box = Box(box.positive_vec3("edges"));
     } else {

@@ -1,5 +1,6 @@
 #include "anisodyn/dmc/dmc_engine.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -187,6 +188,12 @@ void DmcEngine::tracer_move(std::int32_t i, int s, TrialCounts& c) {
   ++c.accepted;
   for (int k = 0; k < 3; ++k) body_displacement_[3 * ui + static_cast<std::size_t>(k)] += X[k];
   commit(i, r, image, p.orientation(ui), rot);
+}
+
+void DmcEngine::reset_accumulators() {
+  std::fill(body_displacement_.begin(), body_displacement_.end(), 0.0);
+  std::fill(body_rotation_.begin(), body_rotation_.end(), 0.0);
+  std::fill(rotation_vector_.begin(), rotation_vector_.end(), 0.0);
 }
 
 void DmcEngine::commit(std::int32_t i, const Vec3& r, const Int3& image, const Quat& q, const Mat3& rot_new) {

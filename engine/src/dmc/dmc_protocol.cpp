@@ -33,6 +33,9 @@ DmcMoveOptions parse_moves(std::optional<io::ConfigNode> node) {
                    ? RotationComposition::Sequential : RotationComposition::ExponentialMap;
   m.frame = node->choice("translation_frame", {"midpoint", "old"}, "midpoint") == "old" ? TranslationFrame::Old
                                                                                          : TranslationFrame::Midpoint;
+  node->reject_unless(m.rotation == RotationComposition::Sequential, "sequential_order",
+                      "unless moves.rotation is \"sequential\" (the exponential map rotates about all three axes at once)");
+  if (m.rotation != RotationComposition::Sequential) return m;
   const std::string order = node->string("sequential_order", "TLW");
   std::set<char> seen(order.begin(), order.end());
   if (order.size() != 3 || seen != std::set<char>{'L', 'T', 'W'})
@@ -94,6 +97,10 @@ void parse_field(io::ConfigNode& cfg, DmcProtocol& p, bool& initially_on) {
   p.field.direction = dir.normalized();
   initially_on = field->choice("initially", {"on", "off"}, "off") == "on";
   p.check_field_direction = field->boolean("check_direction", true);
+  if (!field->has("orientational") && !field->has("dipoles"))
+    field->fail("", "an 'orientational' field or 'dipoles' (a field block with neither has no effect)");
+  field->reject_unless(field->has("orientational"), "check_direction",
+                       "without an orientational field (it turns the field perpendicular to the nematic director)");
   if (auto o = field->optional_object("orientational")) {
     p.field.strength = o->positive("strength");
     p.field.body_axis = parse_axis_letter(*o, "axis", "TWL", 1);
@@ -102,17 +109,39 @@ void parse_field(io::ConfigNode& cfg, DmcProtocol& p, bool& initially_on) {
     p.dipole_gamma = d->positive("gamma");
     p.dipole_species = d->strings("species");
     if (p.dipole_species.empty()) d->fail("species", "expected at least one species name");
+    p.ewald_minimum_image_only = d->boolean("minimum_image_only", false);
+    d->reject_unless(!p.ewald_minimum_image_only, "accuracy",
+                     "with minimum_image_only (the truncated sum to L/2 has no Ewald parameters to choose)");
     p.ewald_accuracy = d->positive("accuracy", 1e-5);
     if (p.ewald_accuracy >= 0.1) d->fail("accuracy", "expected a relative accuracy below 0.1 (default 1e-5)");
-    p.ewald_minimum_image_only = d->boolean("minimum_image_only", false);
   }
+}
+
+/// With schedule.segments the first segment says whether the field starts on.
+void field_initially_has_no_effect(io::ConfigNode& cfg) {
+  if (auto field = cfg.optional_object("field"))
+    field->reject_unless(false, "initially", "with schedule.segments (the first segment's 'field' says how the run starts)");
 }
 
 }  // namespace
 
+bool FrameRules::log_cycle_due(std::int64_t since_switch) const {
+  if (!(log_cycles_per_decade > 0.0) || since_switch < 0) return false;
+  const std::int64_t m = log_cycles_restart > 0 ? since_switch % log_cycles_restart : since_switch;
+  if (m == 0) return true;
+  // m is on the grid if round(10^(k/n)) = m for the k nearest n·log10(m)
+  const double x = log_cycles_per_decade * std::log10(static_cast<double>(m));
+  for (auto k = static_cast<std::int64_t>(std::floor(x)) - 1; k <= static_cast<std::int64_t>(std::ceil(x)) + 1; ++k)
+    if (k >= 0 && std::llround(std::pow(10.0, static_cast<double>(k) / log_cycles_per_decade)) == m) return true;
+  return false;
+}
+
 DmcProtocol parse_dmc_protocol(io::ConfigNode& cfg) {
   DmcProtocol p;
   p.seed = static_cast<std::uint64_t>(cfg.non_negative_integer("seed", 1));
+  if (auto moves = cfg.optional_object("moves"))
+    for (const char* key : {"rotation", "sequential_order", "translation_frame"})
+      if (moves->has(key) && p.rotation_move_key.empty()) p.rotation_move_key = moves->child_path(key);
   p.moves = parse_moves(cfg.optional_object("moves"));
 
   auto steps = cfg.object("time_step");
@@ -127,11 +156,26 @@ DmcProtocol parse_dmc_protocol(io::ConfigNode& cfg) {
     p.balance = mode == "per_cycle" ? BalanceMode::PerCycle : mode == "none" ? BalanceMode::None : BalanceMode::Equilibrium;
     p.reference = b->string("reference", "");
     p.clock = b->string("clock", "");
-    p.preliminary_cycles = b->non_negative_integer("preliminary_cycles", 10000);
-    p.preliminary_iterations = static_cast<int>(b->positive_integer("max_iterations", 3));
-    p.preliminary_tolerance = b->positive("tolerance", 1e-3);
-    p.smoothing_cycles = b->number("smoothing_cycles", 10.0);
-    if (p.smoothing_cycles < 1.0) b->fail("smoothing_cycles", "expected a number of cycles ≥ 1");
+    const bool equilibrium = p.balance == BalanceMode::Equilibrium;
+    const std::string not_equilibrium = "unless balance.mode is \"equilibrium\" (the only mode with a preliminary run)";
+    b->reject_unless(equilibrium, "preliminary_cycles", not_equilibrium);
+    p.preliminary_cycles = equilibrium ? b->non_negative_integer("preliminary_cycles", 10000) : 0;
+    const bool iterates = equilibrium && p.preliminary_cycles > 0;
+    const std::string no_preliminary = equilibrium ? "with preliminary_cycles = 0 (no preliminary run)" : not_equilibrium;
+    b->reject_unless(iterates, "max_iterations", no_preliminary);
+    b->reject_unless(iterates, "tolerance", no_preliminary);
+    if (iterates) {
+      p.preliminary_iterations = static_cast<int>(b->positive_integer("max_iterations", 3));
+      p.preliminary_tolerance = b->positive("tolerance", 1e-3);
+    }
+    for (const char* key : {"preliminary_cycles", "max_iterations", "tolerance"})
+      if (b->has(key) && p.preliminary_key.empty()) p.preliminary_key = b->child_path(key);
+    b->reject_unless(p.balance == BalanceMode::PerCycle, "smoothing_cycles",
+                     "unless balance.mode is \"per_cycle\" (equilibrium runs average few-particle species cumulatively)");
+    if (p.balance == BalanceMode::PerCycle) {
+      p.smoothing_cycles = b->number("smoothing_cycles", 10.0);
+      if (p.smoothing_cycles < 1.0) b->fail("smoothing_cycles", "expected a number of cycles ≥ 1");
+    }
   }
 
   bool initially_on = false;
@@ -143,6 +187,7 @@ DmcProtocol parse_dmc_protocol(io::ConfigNode& cfg) {
   if (has_segments) {
     if (cfg.has("cycles") || cfg.has("time"))
       cfg.fail(cfg.has("cycles") ? "cycles" : "time", "expected no run length when schedule.segments gives it");
+    field_initially_has_no_effect(cfg);
     const std::int64_t repeat = schedule->positive_integer("repeat", 1);
     std::vector<FieldSegment> once;
     for (auto& seg : schedule->objects("segments")) once.push_back(parse_segment(seg));
@@ -155,6 +200,7 @@ DmcProtocol parse_dmc_protocol(io::ConfigNode& cfg) {
     FieldSegment end;
     if (cfg.has("cycles")) end = FieldSegment{initially_on, FieldSegment::Unit::Cycles, true, static_cast<double>(cfg.positive_integer("cycles"))};
     else end = FieldSegment{initially_on, FieldSegment::Unit::Time, true, cfg.positive("time")};
+    if (schedule) schedule->reject_unless(false, "repeat", "without schedule.segments (it repeats their list)");
     if (schedule && schedule->has("switches")) p.segments = parse_switches(*schedule, initially_on, end);
     else p.segments = {end};
   }
@@ -193,6 +239,10 @@ DmcProtocol parse_dmc_protocol(io::ConfigNode& cfg) {
       p.frames.after_switch_every = a->positive_integer("every_cycles");
       p.frames.after_switch_for = a->positive_integer("for_cycles");
     }
+    if (auto l = f->optional_object("log_cycles")) {
+      p.frames.log_cycles_per_decade = l->positive("per_decade");
+      if (l->has("restart_every")) p.frames.log_cycles_restart = l->positive_integer("restart_every");
+    }
   }
   p.observe_every = cfg.positive_integer("observe_every", 1);
 
@@ -208,9 +258,14 @@ DmcProtocol parse_dmc_protocol(io::ConfigNode& cfg) {
         d.first = f.D_trans;
         d.second = f.D_rot;
         p.diffusion_shape.emplace(name, f.shape);
+        p.diffusion_origins[name] = f.origin;
       }
+      if (node.has("D_trans") || node.has("D_rot")) p.diffusion_origins[name] = "configuration";
       if (node.has("D_trans")) d.first = node.vec3("D_trans");
-      if (node.has("D_rot")) d.second = node.vec3("D_rot");
+      if (node.has("D_rot")) {
+        d.second = node.vec3("D_rot");
+        p.rotational_diffusion_keys[name] = node.child_path("D_rot");
+      }
       for (const auto& v : {d.first, d.second})
         if (v && v->minCoeff() < 0.0) node.fail(d.first == v ? "D_trans" : "D_rot", "expected non-negative diffusion coefficients (body axes T, W, L)");
     }
@@ -235,6 +290,27 @@ void check_protocol_species(const DmcProtocol& p, const State& state, const std:
   if (!p.clock.empty()) require(p.clock, "balance.clock");
   for (std::size_t k = 0; k < p.dipole_species.size(); ++k) require(p.dipole_species[k], "field.dipoles.species[" + std::to_string(k) + "]");
   for (const auto& [name, d] : p.diffusion) require(name, "species." + name);
+  // Keys that only act on some inputs.
+  auto has_effect_nowhere = [&](const std::string& path, const std::string& why) {
+    throw InputError(file, path, "no '" + path.substr(path.rfind('.') + 1) + "': it has no effect " + why);
+  };
+  std::vector<std::size_t> counts(state.species.size(), 0);
+  for (auto sp : state.particles.species) counts[static_cast<std::size_t>(sp)]++;
+  bool rotating = false;
+  std::size_t populated = 0;
+  for (std::size_t s = 0; s < state.species.size(); ++s) {
+    populated += counts[s] > 0 ? 1 : 0;
+    rotating = rotating || (counts[s] > 0 && state.species[s].shape.is_anisotropic());
+  }
+  if (!p.rotation_move_key.empty() && !rotating)
+    has_effect_nowhere(p.rotation_move_key, "on an input without anisotropic particles (spheres only translate)");
+  if (!p.preliminary_key.empty() && populated < 2 && !p.tracer)
+    has_effect_nowhere(p.preliminary_key, "on an input with a single species and no pulled tracer (there is nothing to balance)");
+  for (const auto& [name, path] : p.rotational_diffusion_keys) {
+    const int s = index(name);
+    if (s >= 0 && !state.species[static_cast<std::size_t>(s)].shape.is_anisotropic())
+      has_effect_nowhere(path, "on the spheres of species '" + name + "' (they do not rotate)");
+  }
   for (const auto& [name, shape] : p.diffusion_shape)
     if (!same_shape(shape, state.species[static_cast<std::size_t>(index(name))].shape))
       throw InputError(file, "species." + name + ".diffusion_from",

@@ -145,6 +145,8 @@ void DmcRunner::configure_species() {
   preliminary_totals_.assign(ns, TrialCounts{});
   production_totals_.assign(ns, TrialCounts{});
   window_.assign(ns, TrialCounts{});
+  window_balance_.clear(ns);
+  production_balance_.clear(ns);
 }
 
 void DmcRunner::run_preliminary(const std::function<void()>& tick) {
@@ -198,6 +200,8 @@ void DmcRunner::run(io::H5mdWriter& out, std::int64_t checkpoint_every, const st
     run_preliminary(tick);
     // The smoothed acceptance estimates of few-particle species start from the preliminary run.
     balance_->seed(preliminary_totals_);
+    // Displacements and rotations count from production's t = 0, which the summary's drift divides by.
+    engine_.reset_accumulators();
     cursor_.production = true;
   }
   if (engine_.tracer().active()) {
@@ -301,9 +305,8 @@ void DmcRunner::production_cycle(io::H5mdWriter& out) {
     window_[s].add(c[s]);
   }
   // The realised balance uses the time steps in force during the cycle.
-  if (window_balance_.empty()) window_balance_.assign(c.size(), 0.0);
-  const auto realised = balance_->realised_balance(c, dt_used);
-  for (std::size_t s = 0; s < c.size(); ++s) window_balance_[s] += realised[s];
+  balance_->add_to(window_balance_, c, dt_used);
+  balance_->add_to(production_balance_, c, dt_used);
   ++window_cycles_;
   if (cursor_.cycle % protocol_.observe_every == 0) observe(out);
   if (engine_.tracer().active() && cursor_.cycle % protocol_.tracer->record_every == 0) {
@@ -316,12 +319,12 @@ void DmcRunner::production_cycle(io::H5mdWriter& out) {
 
 void DmcRunner::observe(io::H5mdWriter& out) {
   const std::size_t ns = state_.species.size();
-  std::vector<double> acc(ns), pass(ns), balance(ns);
+  std::vector<double> acc(ns), pass(ns);
   for (std::size_t s = 0; s < ns; ++s) {
     acc[s] = window_[s].acceptance();
     pass[s] = window_[s].pass_fraction();
-    balance[s] = window_balance_.empty() ? 0.0 : window_balance_[s] / static_cast<double>(window_cycles_);
   }
+  const std::vector<double> balance = balance_->realised_balance(window_balance_);
   const std::int64_t step = cursor_.cycle;
   const double t = cursor_.time;
   out.append_observable("acceptance", step, t, acc);
@@ -345,7 +348,8 @@ void DmcRunner::observe(io::H5mdWriter& out) {
     attr("acceptance", "1", "acceptance per species (order of /parameters/species) over the cycles since the previous row");
     attr("overlap_pass", "1", "fraction of trials per species that passed the overlap test (the tracer's A_0)");
     attr("time_step", "tau", "MC time step δt_MC per species in force after the row's cycle");
-    attr("balance", "1", "realised balance E_s δt_s / (E_ref δt_ref) per species, averaged over the cycles since the previous row");
+    attr("balance", "1", "realised balance E_s δt_s / (E_ref δt_ref) per species over the cycles since the previous row, "
+                         "E δt pooled as Σ(tried·E·δt)/Σ tried; NaN where the reference species had no trial or no positive E");
     attr("field_on", "1", "1 while the field is on, 0 while off");
     if (protocol_.field.active()) attr("field_energy", "kT", "orientational-field energy per particle βU/N");
     if (protocol_.dipole_gamma > 0.0) attr("dipolar_energy", "kT", "dipolar (Ewald, tinfoil) energy per particle βU/N; 0 while the field is off");
@@ -357,7 +361,7 @@ void DmcRunner::observe(io::H5mdWriter& out) {
     attributes_written_ = true;
   }
   std::fill(window_.begin(), window_.end(), TrialCounts{});
-  std::fill(window_balance_.begin(), window_balance_.end(), 0.0);
+  window_balance_.clear(ns);
   window_cycles_ = 0;
 }
 
@@ -368,6 +372,7 @@ bool DmcRunner::frame_due() {
   bool due = f.every_cycles > 0 && c % f.every_cycles == 0;
   const std::int64_t since = c - cursor_.last_switch_cycle;
   if (f.after_switch_every > 0 && since <= f.after_switch_for && since % f.after_switch_every == 0) due = true;
+  if (f.log_cycle_due(since)) due = true;
   if (f.every_time > 0.0 && t >= static_cast<double>(cursor_.next_time_frame) * f.every_time) {
     due = true;
     while (static_cast<double>(cursor_.next_time_frame) * f.every_time <= t) ++cursor_.next_time_frame;
@@ -398,7 +403,7 @@ void DmcRunner::finish_summary() {
   summary_["clock"] = state_.species[static_cast<std::size_t>(ts.clock)].name;
   summary_["rotation"] = protocol_.moves.rotation == RotationComposition::ExponentialMap ? "exponential" : "sequential";
   summary_["translation_frame"] = protocol_.moves.frame == TranslationFrame::Midpoint ? "midpoint" : "old";
-  const auto realised = balance_->realised_balance(production_totals_, dt_);
+  const auto realised = balance_->realised_balance(production_balance_);
   for (std::size_t s = 0; s < state_.species.size(); ++s) {
     auto& j = summary_["species"][s];
     j["name"] = state_.species[s].name;
@@ -406,7 +411,7 @@ void DmcRunner::finish_summary() {
     j["acceptance"] = production_totals_[s].acceptance();
     j["overlap_pass"] = production_totals_[s].pass_fraction();
     j["trials"] = production_totals_[s].tried;
-    j["realised_balance"] = realised[s];
+    j["realised_balance"] = std::isnan(realised[s]) ? nlohmann::json(nullptr) : nlohmann::json(realised[s]);
   }
   if (engine_.tracer().active()) {
     const auto& t = engine_.tracer();
@@ -434,7 +439,8 @@ nlohmann::json DmcRunner::checkpoint_state() const {
           {"preliminary_totals", counts_json(preliminary_totals_)},
           {"production_totals", counts_json(production_totals_)},
           {"window", counts_json(window_)},
-          {"window_balance", window_balance_},
+          {"window_balance", window_balance_.to_json()},
+          {"production_balance", production_balance_.to_json()},
           {"window_cycles", window_cycles_},
           {"summary", summary_}};
 }
@@ -460,7 +466,8 @@ void DmcRunner::restore(const nlohmann::json& j) {
   preliminary_totals_ = counts_from_json(j.at("preliminary_totals"));
   production_totals_ = counts_from_json(j.at("production_totals"));
   window_ = counts_from_json(j.at("window"));
-  window_balance_ = j.at("window_balance").get<std::vector<double>>();
+  window_balance_.from_json(j.at("window_balance"));
+  production_balance_.from_json(j.at("production_balance"));
   window_cycles_ = j.at("window_cycles").get<std::int64_t>();
   summary_ = j.at("summary");
   state_.step = cursor_.cycle;

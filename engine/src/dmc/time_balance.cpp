@@ -1,6 +1,8 @@
 #include "anisodyn/dmc/time_balance.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace anisodyn {
 
@@ -15,8 +17,20 @@ double TimeBalance::effective(int s, double acceptance, double pass) const {
   return 1.5 * acceptance - 0.5 * a0;
 }
 
+double TimeBalance::effective_accepted(int s, const TrialCounts& c) const {
+  const auto accepted = static_cast<double>(c.accepted);
+  if (s != settings_.tracer_species) return accepted;
+  double bath = static_cast<double>(c.passed);  // A_0 · tried
+  if (settings_.a0 == TracerBathAcceptance::One) bath = static_cast<double>(c.tried);
+  else if (settings_.a0 == TracerBathAcceptance::Fixed) bath = settings_.a0_value * static_cast<double>(c.tried);
+  // With integer counts (A_0 = pass fraction or 1) the difference is exact; with a fixed A_0 it can
+  // be a rounding residue of a true zero, which must not become a huge ratio downstream.
+  const double e = 1.5 * accepted - 0.5 * bath;
+  return std::abs(e) <= 1e-12 * (1.5 * accepted + 0.5 * bath) ? 0.0 : e;
+}
+
 double TimeBalance::effective_acceptance(int s, const TrialCounts& c) const {
-  return effective(s, c.acceptance(), c.pass_fraction());
+  return c.tried > 0 ? effective_accepted(s, c) / static_cast<double>(c.tried) : 0.0;
 }
 
 std::vector<double> TimeBalance::balanced_steps(const std::vector<TrialCounts>& counts, const std::vector<double>& dt) const {
@@ -31,12 +45,23 @@ std::vector<double> TimeBalance::balanced_steps(const std::vector<TrialCounts>& 
   return out;
 }
 
-std::vector<double> TimeBalance::realised_balance(const std::vector<TrialCounts>& counts, const std::vector<double>& dt) const {
-  const int ref = settings_.reference;
-  const double base = effective_acceptance(ref, counts[static_cast<std::size_t>(ref)]) * dt[static_cast<std::size_t>(ref)];
-  std::vector<double> out(dt.size(), 0.0);
-  for (std::size_t s = 0; s < dt.size(); ++s)
-    out[s] = base > 0.0 ? effective_acceptance(static_cast<int>(s), counts[s]) * dt[s] / base : 0.0;
+void TimeBalance::add_to(BalanceSums& sums, const std::vector<TrialCounts>& cycle, const std::vector<double>& dt) const {
+  if (sums.tried.size() != cycle.size()) sums.clear(cycle.size());
+  for (std::size_t s = 0; s < cycle.size(); ++s) {
+    sums.weighted_steps[s] += effective_accepted(static_cast<int>(s), cycle[s]) * dt[s];
+    sums.tried[s] += cycle[s].tried;
+  }
+}
+
+std::vector<double> TimeBalance::realised_balance(const BalanceSums& sums) const {
+  const std::size_t n = sums.tried.size();
+  auto step = [&](std::size_t s) { return sums.weighted_steps[s] / static_cast<double>(sums.tried[s]); };
+  const auto ref = static_cast<std::size_t>(settings_.reference);
+  std::vector<double> out(n, std::numeric_limits<double>::quiet_NaN());
+  if (ref >= n || sums.tried[ref] == 0 || !(sums.weighted_steps[ref] > 0.0)) return out;
+  const double base = step(ref);
+  for (std::size_t s = 0; s < n; ++s)
+    if (sums.tried[s] > 0) out[s] = step(s) / base;
   return out;
 }
 

@@ -27,24 +27,24 @@ std::set<double> cuboid_bead_radii(double T, const std::vector<double>& wanted) 
 
 /// Largest σ_b whose shell has at least `beads` beads (bisection on the bead count, which falls
 /// with σ_b).
-double bead_radius_for_count(const HydroShape& shape, std::size_t beads) {
+double bead_radius_for_count(const HydroShape& shape, std::size_t beads, ShellConstruction construction) {
   double lo = 1e-4 * thinnest_dimension(shape), hi = thinnest_dimension(shape);
   for (int it = 0; it < 60; ++it) {
     const double mid = std::sqrt(lo * hi);
-    if (shell_beads(shape, mid).size() >= beads) lo = mid; else hi = mid;
+    if (construction(shape, mid).size() >= beads) lo = mid; else hi = mid;
   }
   return lo;
 }
 
 }  // namespace
 
-std::vector<double> choose_bead_radii(const HydroShape& shape, const ShellSeries& series) {
+std::vector<double> choose_bead_radii(const HydroShape& shape, const ShellSeries& series, ShellConstruction construction) {
   if (series.count < 3) throw InputError("an extrapolation to zero bead size needs at least 3 shell resolutions");
   if (!(series.size_ratio > 1.0)) throw InputError("the coarsest/finest bead-size ratio must exceed 1");
-  const double finest = bead_radius_for_count(shape, series.max_beads);
+  const double finest = bead_radius_for_count(shape, series.max_beads, construction);
   const double coarsest_allowed = 0.25 * thinnest_dimension(shape);
   if (finest * series.size_ratio > coarsest_allowed) {
-    const std::size_t needed = shell_beads(shape, coarsest_allowed / series.size_ratio).size();
+    const std::size_t needed = construction(shape, coarsest_allowed / series.size_ratio).size();
     throw InputError("max_beads = " + std::to_string(series.max_beads) + " is too few beads for an extrapolation: "
                      "the coarsest shell must resolve the thinnest dimension (σ_b ≤ thickness/4), which needs "
                      "at least " + std::to_string(needed) + " beads in the finest shell");
@@ -60,13 +60,14 @@ std::vector<double> choose_bead_radii(const HydroShape& shape, const ShellSeries
 }
 
 DiffusionTensorResult compute_diffusion_tensor(const HydroShape& shape, const std::vector<double>& bead_radii,
-                                               const ResistanceOptions& options, const ShellProgress& progress) {
+                                               const ResistanceOptions& options, const ShellProgress& progress,
+                                               ShellConstruction construction) {
   DiffusionTensorResult out;
   for (std::size_t k = 0; k < bead_radii.size(); ++k) {
     const auto start = std::chrono::steady_clock::now();
     ShellSolution s;
     s.sigma_b = bead_radii[k];
-    const BeadModel model{shell_beads(shape, s.sigma_b), s.sigma_b};
+    const BeadModel model{construction(shape, s.sigma_b), s.sigma_b};
     s.beads = model.centres.size();
     const ResistanceResult r = rigid_body_resistance(model, options);
     s.symmetry_order = r.symmetry_order;
@@ -97,9 +98,9 @@ DiffusionTensorResult compute_diffusion_tensor(const HydroShape& shape, const st
     out.centre_of_diffusion[a] = extrapolate_to_zero_size(sigma, y).linear;
   }
   out.diffusion = out.resistance.inverse();
-  const Mat6 quadratic_diffusion = quadratic.inverse();
+  out.quadratic_diffusion = quadratic.inverse();
   for (int i = 0; i < 6; ++i)
-    out.relative_error[i] = std::abs(quadratic_diffusion(i, i) - out.diffusion(i, i)) / out.diffusion(i, i);
+    out.relative_error[i] = std::abs(out.quadratic_diffusion(i, i) - out.diffusion(i, i)) / out.diffusion(i, i);
   out.relative_coupling = relative_coupling(out.diffusion);
   if (!out.diffusion.allFinite() || out.diffusion.diagonal().minCoeff() <= 0.0)
     throw RuntimeFailure("the extrapolated diffusion tensor is not positive: the shells are too coarse for a linear extrapolation");

@@ -51,6 +51,35 @@ const ShapeRegistration kShapeRegistry[] = {
     {"sphere_union", &parse_sphere_union},
 };
 
+struct ConstructionRegistration {
+  const char* name;
+  ShellConstruction beads;
+};
+// One line per shell construction; the first is the default.
+const ConstructionRegistration kConstructionRegistry[] = {
+    {"surface_grid", &shell_beads},
+    {"cell_centres", &cell_centre_beads},
+};
+
+const ConstructionRegistration& parse_construction(io::ConfigNode& n, const std::string& fallback) {
+  std::vector<std::string> names;
+  for (const auto& r : kConstructionRegistry) names.emplace_back(r.name);
+  const std::string name = n.choice("construction", names, fallback);
+  for (const auto& r : kConstructionRegistry)
+    if (name == r.name) return r;
+  n.fail("construction", "expected a known shell construction");
+}
+
+/// Builds the coarsest allowed shell once, so that a construction that does not cover the shape
+/// fails while parsing.
+void check_construction_covers(io::ConfigNode& n, const HydroSpeciesJob& job) {
+  try {
+    job.construction(job.shape, 0.25 * thinnest_dimension(job.shape));
+  } catch (const InputError& e) {
+    n.fail("construction", std::string("a construction that covers this shape: ") + e.what());
+  }
+}
+
 ShellSeries parse_shell_series(io::ConfigNode& n, const ShellSeries& fallback) {
   ShellSeries s = fallback;
   s.count = static_cast<int>(n.positive_integer("count", s.count));
@@ -78,6 +107,7 @@ HydroShape parse_hydro_shape(io::ConfigNode node) { return io::parse_registered(
 HydroConfig parse_hydro_config(io::ConfigNode& cfg) {
   HydroConfig out;
   out.use_symmetry = cfg.boolean("symmetry", true);
+  const std::string default_construction = parse_construction(cfg, kConstructionRegistry[0].name).name;
   ShellSeries defaults;
   if (auto s = cfg.optional_object("shells")) defaults = parse_shell_series(*s, defaults);
   std::optional<std::vector<double>> default_radii;
@@ -86,6 +116,8 @@ HydroConfig parse_hydro_config(io::ConfigNode& cfg) {
     default_radii = parse_bead_radii(cfg);
   }
 
+  // Top-level keys are defaults: each must reach at least one species, or it has no effect.
+  bool default_construction_used = false, default_series_used = false;
   std::set<std::string> seen;
   auto nodes = cfg.objects("species");
   if (nodes.empty()) cfg.fail("species", "expected at least one species");
@@ -95,6 +127,13 @@ HydroConfig parse_hydro_config(io::ConfigNode& cfg) {
     if (job.name.empty() || !seen.insert(job.name).second) n.fail("name", "expected a unique, non-empty species name");
     job.shape_json = n.raw().at("shape");
     job.shape = parse_hydro_shape(n.object("shape"));
+    default_construction_used |= !n.has("construction");
+    const ConstructionRegistration& construction = parse_construction(n, default_construction);
+    job.construction_name = construction.name;
+    job.construction = construction.beads;
+    check_construction_covers(n, job);
+    if (n.has("bead_radii") && n.has("shells")) n.reject_unless(false, "shells", "with bead_radii (the radii are given: either shells or bead_radii, not both)");
+    default_series_used |= !n.has("bead_radii") && !n.has("shells");
     if (n.has("bead_radii")) {
       job.bead_radii = parse_bead_radii(n);
     } else if (default_radii && !n.has("shells")) {
@@ -107,13 +146,17 @@ HydroConfig parse_hydro_config(io::ConfigNode& cfg) {
         where = s->path();
       }
       try {
-        job.bead_radii = choose_bead_radii(job.shape, series);
+        job.bead_radii = choose_bead_radii(job.shape, series, job.construction);
       } catch (const InputError& e) {
         throw InputError(cfg.file(), where, "species '" + job.name + "': " + e.what());
       }
     }
     out.species.push_back(std::move(job));
   }
+  const std::string own = "with every species setting its own ";
+  cfg.reject_unless(default_construction_used, "construction", "(a default) " + own + "construction");
+  cfg.reject_unless(default_series_used, "shells", "(a default) " + own + "bead_radii or shells");
+  cfg.reject_unless(default_series_used, "bead_radii", "(a default) " + own + "bead_radii or shells");
   return out;
 }
 

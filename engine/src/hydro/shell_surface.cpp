@@ -39,10 +39,6 @@ double curve_length(const Curve& curve, double t0, double t1) {
   return s;
 }
 
-int intervals_for(double length, double sigma_b) {
-  return std::max(1, static_cast<int>(std::lround(length / (2.0 * sigma_b))));
-}
-
 /// One piece of a meridian, as a curve t ↦ (ρ, z) over [t0, t1].
 struct MeridianSegment {
   Curve curve;
@@ -55,7 +51,7 @@ std::vector<Vec3> revolution_shell(const std::vector<MeridianSegment>& meridian,
   std::vector<Vec2> ring_points;
   for (std::size_t k = 0; k < meridian.size(); ++k) {
     const auto& seg = meridian[k];
-    const int m = intervals_for(curve_length(seg.curve, seg.t0, seg.t1), sigma_b);
+    const int m = bead_intervals(curve_length(seg.curve, seg.t0, seg.t1), sigma_b);
     const auto t = equal_arc_parameters(seg.curve, seg.t0, seg.t1, m);
     for (std::size_t i = (k == 0 ? 0 : 1); i < t.size(); ++i) ring_points.push_back(seg.curve(t[i]));
   }
@@ -106,7 +102,7 @@ std::vector<Vec3> spherocylinder_shell(double length, double d, double sigma_b) 
 
 std::vector<Vec3> cuboid_shell(const Vec3& edges, double sigma_b) {
   Int3 n;
-  for (int a = 0; a < 3; ++a) n[a] = intervals_for(edges[a], sigma_b);
+  for (int a = 0; a < 3; ++a) n[a] = bead_intervals(edges[a], sigma_b);
   const Vec3 h = edges.cwiseQuotient(n.cast<double>());
   std::vector<Vec3> beads;
   for (int i = 0; i <= n.x(); ++i)
@@ -136,6 +132,10 @@ std::vector<Vec3> sphere_union_shell(const HydroShape& s, double sigma_b) {
 }
 
 }  // namespace
+
+int bead_intervals(double length, double sigma_b) {
+  return std::max(1, static_cast<int>(std::lround(length / (2.0 * sigma_b))));
+}
 
 HydroShape hydro_shape_of(const Shape& shape) {
   switch (shape.kind) {

@@ -344,6 +344,31 @@ struct FileReader {
       bad(hpath, "cannot read: " + hdf5_error_text());
   }
 
+  std::vector<hsize_t> dims(const std::string& hpath) const {
+    Handle ds = dataset(hpath);
+    return dataset_dims(ds.get());
+  }
+
+  /// Rows frames.frame(0), frames.frame(1), … of a dataset whose first axis counts frames (one
+  /// strided hyperslab); the other axes are read whole. The caller has checked the shape.
+  template <class T>
+  std::vector<T> read_frame_rows(const std::string& hpath, hid_t mem_type, const FrameSlice& frames) const {
+    Handle ds = dataset(hpath);
+    std::vector<hsize_t> count = dataset_dims(ds.get());
+    std::vector<hsize_t> start(count.size(), 0), stride(count.size(), 1);
+    start[0] = frames.first;
+    stride[0] = std::max<std::size_t>(frames.stride, 1);
+    count[0] = frames.count;
+    std::vector<T> out(product(count));
+    if (out.empty()) return out;
+    Handle fspace(H5Dget_space(ds.get()), H5Sclose);
+    Handle mspace(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr), H5Sclose);
+    if (H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start.data(), stride.data(), count.data(), nullptr) < 0 ||
+        H5Dread(ds.get(), mem_type, mspace.get(), fspace.get(), H5P_DEFAULT, out.data()) < 0)
+      bad(hpath, "cannot read: " + hdf5_error_text());
+    return out;
+  }
+
   template <class T>
   std::vector<T> read_vector(const std::string& hpath, hid_t mem_type, std::vector<hsize_t>* dims_out = nullptr) const {
     Handle ds = dataset(hpath);
@@ -1149,28 +1174,44 @@ State H5mdReader::read_frame(std::ptrdiff_t index) const {
 }
 
 std::vector<double> H5mdReader::read_element_frames(const std::string& element, std::size_t& width) const {
-  QuietHdf5 quiet;
-  const Impl& m = *impl_;
-  const std::string hpath = std::string("/particles/") + kParticleGroup + "/" + element + "/value";
-  if (!m.exists(hpath)) m.bad(hpath, "missing required dataset (per-particle element '" + element + "')");
-  std::vector<hsize_t> d;
-  auto out = m.read_vector<double>(hpath, H5T_NATIVE_DOUBLE, &d);
-  if (d.size() != 3 || d[0] != m.frames || d[1] != m.n)
-    m.bad(hpath, "expected shape [" + std::to_string(m.frames) + ", " + std::to_string(m.n) + ", width], got " + dims_text(d));
-  width = d[2];
-  return out;
+  return read_element_frames(element, width, FrameSlice{0, impl_->frames, 1});
 }
 
 std::vector<std::int64_t> H5mdReader::read_integer_element_frames(const std::string& element) const {
-  QuietHdf5 quiet;
-  const Impl& m = *impl_;
+  return read_integer_element_frames(element, FrameSlice{0, impl_->frames, 1});
+}
+
+namespace {
+
+/// Frames `frames` of /particles/all/<element>/value, whose shape must be [F, N] (width == nullptr)
+/// or [F, N, width] (the width is returned).
+template <class T>
+std::vector<T> read_element_rows(const FileReader& m, std::size_t file_frames, std::size_t n, const std::string& element,
+                                 hid_t mem_type, const FrameSlice& frames, std::size_t* width) {
   const std::string hpath = std::string("/particles/") + kParticleGroup + "/" + element + "/value";
   if (!m.exists(hpath)) m.bad(hpath, "missing required dataset (per-particle element '" + element + "')");
-  std::vector<hsize_t> d;
-  auto out = m.read_vector<std::int64_t>(hpath, H5T_NATIVE_INT64, &d);
-  if (d.size() != 2 || d[0] != m.frames || d[1] != m.n)
-    m.bad(hpath, "expected shape [" + std::to_string(m.frames) + ", " + std::to_string(m.n) + "], got " + dims_text(d));
-  return out;
+  const auto d = m.dims(hpath);
+  const std::size_t rank = width ? 3 : 2;
+  if (d.size() != rank || d[0] != file_frames || d[1] != n)
+    m.bad(hpath, "expected shape [" + std::to_string(file_frames) + ", " + std::to_string(n) + (width ? ", width" : "") + "], got " +
+                     dims_text(d));
+  if (frames.count > 0 && (frames.stride == 0 || frames.frame(frames.count - 1) >= file_frames))
+    m.bad(hpath, "frames " + std::to_string(frames.first) + " … " + std::to_string(frames.frame(frames.count - 1)) +
+                     " requested, the file holds " + std::to_string(file_frames));
+  if (width) *width = d[2];
+  return m.read_frame_rows<T>(hpath, mem_type, frames);
+}
+
+}  // namespace
+
+std::vector<double> H5mdReader::read_element_frames(const std::string& element, std::size_t& width, const FrameSlice& frames) const {
+  QuietHdf5 quiet;
+  return read_element_rows<double>(*impl_, impl_->frames, impl_->n, element, H5T_NATIVE_DOUBLE, frames, &width);
+}
+
+std::vector<std::int64_t> H5mdReader::read_integer_element_frames(const std::string& element, const FrameSlice& frames) const {
+  QuietHdf5 quiet;
+  return read_element_rows<std::int64_t>(*impl_, impl_->frames, impl_->n, element, H5T_NATIVE_INT64, frames, nullptr);
 }
 
 std::vector<double> H5mdReader::box_edges_frames() const {

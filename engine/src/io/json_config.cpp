@@ -229,6 +229,11 @@ bool ConfigNode::has(const std::string& key) const {
   return true;
 }
 
+void ConfigNode::reject_unless(bool applies, const std::string& key, const std::string& reason) {
+  if (!applies && has(key)) fail(key, "no '" + key + "': it has no effect " + reason);
+  mark_used(key);
+}
+
 void ConfigNode::fail(const std::string& key, const std::string& expected) const {
   const std::string where = key.empty() ? path_ : child_path(key);
   std::string problem = expected;

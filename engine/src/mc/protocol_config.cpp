@@ -1,5 +1,8 @@
 #include "anisodyn/mc/protocol_config.hpp"
 
+#include <initializer_list>
+#include <string>
+
 namespace anisodyn {
 
 namespace {
@@ -7,15 +10,32 @@ BoxMoves parse_box_moves(io::ConfigNode& n) {
   return n.choice("box_moves", {"isotropic", "per_axis"}, "isotropic") == "isotropic" ? BoxMoves::Isotropic : BoxMoves::PerAxis;
 }
 
+/// Keys of one phase type or compression method, refused elsewhere with the reason why.
+void reject_keys_of(io::ConfigNode& n, bool applies, std::initializer_list<const char*> keys, const std::string& reason) {
+  for (const char* key : keys) n.reject_unless(applies, key, reason);
+}
+
 McPhase parse_phase(io::ConfigNode n, std::size_t index) {
   McPhase p;
   const std::string type = n.choice("type", {"compress", "npt", "nvt"});
   p.label = n.string("label", type + "-" + std::to_string(index));
   p.expect_phase = n.choice("expect_phase", {"", "isotropic", "nematic"}, "");
+  const std::string in_phase = "in a \"" + type + "\" phase";
+  reject_keys_of(n, type == "compress", {"packing_fraction", "method", "quick_step", "pressure_start", "pressure_growth",
+                                         "cycles_per_step", "plateau_tolerance", "squeeze_window", "squeeze_sweeps", "max_cycles"},
+                 in_phase + " (compression only)");
+  reject_keys_of(n, type == "npt", {"pressure"}, in_phase + " (npt phases only; compression ramps its own pressure)");
+  reject_keys_of(n, type != "compress", {"cycles"}, in_phase + " (a compression runs until it reaches its packing fraction)");
+  reject_keys_of(n, type != "nvt", {"box_moves"}, in_phase + " (the box is fixed)");
   if (type == "compress") {
     p.type = McPhase::Type::Compress;
     p.target_packing_fraction = n.positive("packing_fraction");
     if (p.target_packing_fraction >= 1.0) n.fail("packing_fraction", "expected a packing fraction below 1");
+    p.method = n.choice("method", {"npt", "quick"}, "npt");
+    const bool quick = p.method == "quick";
+    reject_keys_of(n, !quick, {"pressure_start", "pressure_growth", "cycles_per_step", "plateau_tolerance", "squeeze_window", "box_moves"},
+                   "with method \"quick\" (no pressure ramp: the box shrinks by quick_step)");
+    reject_keys_of(n, quick, {"quick_step"}, "unless method is \"quick\"");
     if (n.has("pressure_start")) p.pressure_start = n.positive("pressure_start");
     p.pressure_growth = n.positive("pressure_growth", 1.5);
     if (p.pressure_growth <= 1.0) n.fail("pressure_growth", "expected a factor greater than 1");
@@ -26,7 +46,6 @@ McPhase parse_phase(io::ConfigNode n, std::size_t index) {
     p.plateau_tolerance = n.non_negative("plateau_tolerance", 0.005);
     p.box_moves = parse_box_moves(n);
     p.tune = n.boolean("tune", true);
-    p.method = n.choice("method", {"npt", "quick"}, "npt");
     p.quick_step = n.positive("quick_step", 0.005);
     if (p.quick_step >= 0.5) n.fail("quick_step", "expected a relative volume step below 0.5");
   } else if (type == "npt") {
@@ -67,6 +86,10 @@ McProtocol parse_mc_protocol(io::ConfigNode& cfg) {
   auto phases = cfg.objects("phases");
   if (phases.empty()) cfg.fail("phases", "expected at least one phase (compress, npt or nvt)");
   for (std::size_t i = 0; i < phases.size(); ++i) p.phases.push_back(parse_phase(phases[i], i));
+  bool tunes = false;
+  for (const auto& phase : p.phases) tunes = tunes || phase.tune;
+  for (const char* key : {"target_acceptance", "tune_every"})
+    cfg.reject_unless(tunes, key, "when no phase tunes its move sizes (set \"tune\": true in a phase)");
   return p;
 }
 

@@ -49,27 +49,52 @@ bool same_shape(const Shape& a, const Shape& b) {
          close(a.edges.x(), b.edges.x()) && close(a.edges.y(), b.edges.y()) && close(a.edges.z(), b.edges.z());
 }
 
+namespace {
+
+/// The diffusion_from files, in the order they are searched.
+std::vector<std::string> diffusion_files(io::ConfigNode& node) {
+  if (node.has("file") && node.raw().at("file").is_array()) {
+    std::vector<std::string> files = node.strings("file");
+    if (files.empty()) node.fail("file", "expected a species file or a non-empty list of them");
+    return files;
+  }
+  return {node.string("file")};
+}
+
+}  // namespace
+
 DiffusionFromFile read_diffusion_from(io::ConfigNode node, const std::optional<Shape>& expected_shape) {
-  const std::string file = resolve_data_path(node.string("file"), node.file());
+  const std::vector<std::string> files = diffusion_files(node);
   const std::string name = node.string("species");
-  nlohmann::json doc;
-  try {
-    doc = io::read_species_file(file);
-  } catch (const InputError& e) {
-    node.fail("file", std::string("expected a readable species file written by anisodyn-hydro (") + e.what() + ")");
-  }
   const nlohmann::json* found = nullptr;
-  try {
-    found = &io::species_file_entry(doc, file, name);
-  } catch (const InputError& e) {
-    node.fail("species", std::string("expected a species of ") + file + " (" + e.what() + ")");
+  nlohmann::json doc;
+  std::string file, searched;
+  for (std::size_t k = 0; k < files.size() && !found; ++k) {
+    file = resolve_data_path(files[k], node.file());
+    const std::string key = files.size() > 1 ? "file[" + std::to_string(k) + "]" : "file";
+    try {
+      doc = io::read_species_file(file);
+    } catch (const InputError& e) {
+      // A missing file is an error even where a later one would do: a typo must not fall through.
+      throw InputError(node.file(), node.child_path(key),
+                       std::string("expected a readable species file written by anisodyn-hydro (") + e.what() + ")");
+    }
+    try {
+      found = &io::species_file_entry(doc, file, name);
+    } catch (const InputError& e) {
+      searched += std::string(searched.empty() ? "" : "; ") + e.what();
+    }
   }
-  const nlohmann::json& entry = *found;
+  if (!found) node.fail("species", "expected a species of " + (files.size() > 1 ? "one of the files" : file) + " (" + searched + ")");
+  const nlohmann::json entry = *found;
   io::ConfigNode e(entry, file, "species[" + name + "]");
+  e.mark_used("source");
   DiffusionFromFile d;
   d.shape = parse_shape(e.object("shape"));
   d.D_trans = e.positive_vec3("D_trans");
   d.D_rot = e.vec3("D_rot");
+  d.origin = {{"file", file}, {"species", name}};
+  if (entry.contains("source")) d.origin["source"] = entry.at("source");
   if (expected_shape && !same_shape(*expected_shape, d.shape))
     node.fail("species", "expected the same shape as this species; '" + name + "' in " + file + " is " +
                              entry.at("shape").dump());
@@ -78,7 +103,7 @@ DiffusionFromFile read_diffusion_from(io::ConfigNode node, const std::optional<S
 
 Shape parse_shape(io::ConfigNode node) { return io::parse_registered(node, "type", kShapeRegistry); }
 
-Species parse_species(io::ConfigNode node) {
+Species parse_species(io::ConfigNode node, nlohmann::json* diffusion_origin) {
   Species s;
   s.name = node.string("name");
   if (s.name.empty()) node.fail("name", "expected a non-empty species name");
@@ -90,8 +115,10 @@ Species parse_species(io::ConfigNode node) {
     s.shape = d.shape;
     s.D_trans = d.D_trans;
     s.D_rot = d.D_rot;
+    if (diffusion_origin) *diffusion_origin = d.origin;
     return s;
   }
+  if (diffusion_origin) *diffusion_origin = node.has("D_trans") || node.has("D_rot") ? nlohmann::json("configuration") : nlohmann::json();
   s.shape = parse_shape(node.object("shape"));
   auto non_negative_vec3 = [&](const std::string& key) {
     const Vec3 v = node.vec3(key, Vec3::Zero());

@@ -1,10 +1,14 @@
 #pragma once
 // Active (constant-force) microrheology of a pulled tracer (spec 50 §6.3–6.4):
-//   - effective friction (F3): γ_eff/γ_0 = D_s βF / ⟨v⟩, with v the slope of a linear fit of the
-//     tracer displacement along the force, (r(t) − r(0))·ê, against mapped time over the steady part
-//     of each replica (Decision: from the first time the tracer has moved 2σ along ê, or from the
-//     configured `steady_from`); ⟨v⟩ is the mean over replicas and the ratio's error a jackknife over
-//     replicas (over 10 time blocks of the steady part for a single replica);
+//   - effective friction (F3): γ_eff/γ_0 = D_s βF / ⟨v⟩. Over the steady part of each replica
+//     (Decision: from the first time the tracer has moved 2σ along ê, or from the configured
+//     `steady_from`) the tracer's displacement along ê is a drifting random walk, whose maximum-
+//     likelihood drift is the end-to-end displacement over the elapsed time (a least-squares slope
+//     of the whole path weights the noisy ends and has a larger variance). ⟨v⟩ pools the replicas
+//     the same way, Σ Δz_i / Σ Δt_i; the errors are jackknifes over replicas (over 10 consecutive
+//     time blocks of the steady part for a single replica), reported with the plain scatter of the
+//     per-replica velocities. At Pe = 0 the velocity is measured (it should vanish), γ_eff/γ_0 is
+//     undefined (NaN) and the steady part is the whole run unless `steady_from` says otherwise;
 //   - axisymmetric density map (F4) of the bath around the tracer: Δz = (r_j − r_t)·ê (minimum image,
 //     +Δz upstream), ρ_c the distance from the line through the tracer along ê, bins 0.25 × 0.25
 //     (Decision), ring volume π[(ρ_c + Δρ)² − ρ_c²]Δz, normalised by ρ_bath = N_c/V, averaged over
@@ -39,7 +43,8 @@ struct ActiveMicrorheologySettings {
   double radius = std::numeric_limits<double>::quiet_NaN();      // tracer radius a, for Pe only
   Vec3 direction = Vec3::UnitZ();       // force direction, along a box axis
   bool direction_given = false;         // else the run's tracer.axis (if any), else +z
-  double steady_distance = 2.0;         // Decision: the steady part starts after moving 2σ along ê
+  double steady_distance = 2.0;         // Decision: the steady part starts after moving 2σ along ê (βF > 0 only)
+  bool steady_distance_given = false;
   std::optional<double> steady_from;    // or from this mapped time
   TracerPathSource source = TracerPathSource::Auto;
   bool density_map = true;
@@ -52,7 +57,8 @@ struct ActiveMicrorheologySettings {
 
 /// Reads the keys of the active mode: species, bath_species, beta_force | force (+ kT) | pe (+ radius |
 /// tracer_diameter), D_s, direction, steady_distance, steady_from, position_source, density_map,
-/// bin_width (or dz_bin, rho_bin), on_axis_radius, wake_threshold, order_axis.
+/// bin_width (or dz_bin, rho_bin), on_axis_radius, wake_threshold, order_axis. A force of 0 (Pe = 0)
+/// is valid: the run is then a passive reference.
 ActiveMicrorheologySettings parse_active_microrheology_settings(io::ConfigNode& cfg);
 
 /// Fills the defaults that live in the trajectory: βF from `pe` (or the run's tracer.pe) and the
@@ -62,12 +68,16 @@ ActiveMicrorheologySettings parse_active_microrheology_settings(io::ConfigNode& 
 void resolve_active_defaults(ActiveMicrorheologySettings& s, const SpeciesTable& table, const nlohmann::json& run_parameters,
                              const std::string& config_file, nlohmann::json& details);
 
-/// The steady-state velocity of one path: the least-squares slope of s(t) = (r(t) − r(t_0))·ê over the
-/// points with t ≥ t_start (t_start = steady_from, or the first time s ≥ steady_distance).
+/// The steady-state velocity of one path s(t) = (r(t) − r(t_0))·ê over the points with t ≥ t_start
+/// (t_start = steady_from, or the first time s ≥ steady_distance): the end-to-end drift
+/// [s(t_end) − s(t_start)] / (t_end − t_start), with the error √(σ²/(t_end − t_start)) of a Brownian drift
+/// whose σ² = Σ (Δs_k − v Δt_k)² / Δt_total · n/(n − 1) comes from the path's own increments.
 struct SteadyVelocity {
   double velocity = std::numeric_limits<double>::quiet_NaN(), velocity_error = std::numeric_limits<double>::quiet_NaN();
   double t_start = std::numeric_limits<double>::quiet_NaN(), t_end = std::numeric_limits<double>::quiet_NaN();
-  std::size_t points = 0, first = 0;  // fitted points, index of the first one
+  double displacement = std::numeric_limits<double>::quiet_NaN();  // s(t_end) − s(t_start)
+  std::size_t points = 0, first = 0;  // points in the steady part, index of the first one
+  double duration() const { return t_end - t_start; }
 };
 SteadyVelocity steady_velocity(const std::vector<double>& time, const std::vector<double>& displacement,
                                double steady_distance, std::optional<double> steady_from);
@@ -85,8 +95,10 @@ struct ActiveResult {
   std::vector<SteadyVelocity> replicas;
   std::vector<std::string> replica_paths;
   std::string path_source;          // "frames" or "observable tracer_position"
-  Estimate velocity;                // mean over replicas (or blocks) ± SE
-  Estimate gamma_ratio;             // D_s βF / ⟨v⟩, jackknife
+  Estimate velocity;                // Σ Δz / Σ Δt over replicas (or blocks), jackknife error
+  Estimate gamma_ratio;             // D_s βF / ⟨v⟩, jackknife; NaN at βF = 0
+  Estimate replica_velocity;        // plain mean ± SE of the per-sample velocities (the scatter, for comparison)
+  double velocity_scatter = std::numeric_limits<double>::quiet_NaN();  // their standard deviation
   std::size_t velocity_samples = 0;
   double beta_force = 0, D_s = 0;
   // density map

@@ -5,7 +5,8 @@
 // (<output stem>.<table>.csv) and one for the scalars. All files are written atomically.
 //
 // HDF5 layout:
-//   /                      attrs tool, tool_version, git_revision, created_utc, inputs (JSON text)
+//   /                      attrs tool, tool_version, git_revision, created_utc, inputs (JSON text),
+//                          window (JSON text; only when the stage was given a time window)
 //   /parameters            JSON text of the stage parameters
 //   /provenance            JSON text (io/provenance.hpp)
 //   /<table>               group, attr definition
@@ -64,6 +65,9 @@ class AnalysisOutput {
   void scalar(Scalar s);
   /// Provenance is made last (it hashes the inputs), just before write().
   void set_provenance(nlohmann::json provenance) { provenance_ = std::move(provenance); }
+  /// The time window the stage analysed (frame_window.hpp record), written as the root attribute
+  /// `window` and as a comment line heading each CSV table.
+  void set_window(nlohmann::json record) { window_ = std::move(record); }
   const std::vector<Table>& tables() const { return tables_; }
   const std::vector<Scalar>& scalars() const { return scalars_; }
 
@@ -74,7 +78,7 @@ class AnalysisOutput {
 
  private:
   std::string path_;
-  nlohmann::json parameters_, provenance_;
+  nlohmann::json parameters_, provenance_, window_;
   std::vector<Table> tables_;
   std::vector<Scalar> scalars_;
 };

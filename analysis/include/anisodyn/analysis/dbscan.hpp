@@ -52,11 +52,10 @@ struct DbscanCalibrationSettings {
   std::optional<double> eps;        // absent: the knee of each configuration's k-NN curve
   double r_max = 2.0;               // keep r_∥, r_⊥ ≤ r_max (2σ)
   std::vector<double> eps_factors{0.7, 1.0, 1.4};
-  double t_min = -std::numeric_limits<double>::infinity();  // frames before this time are skipped
 };
 
 /// Reads gamma (required), sigma, field_direction, min_pts, eps, r_max (default 2 sigma),
-/// eps_factors, t_min.
+/// eps_factors.
 DbscanCalibrationSettings parse_dbscan_settings(io::ConfigNode& cfg);
 
 /// Steps 1–2: the (r_∥, r_⊥) points of one configuration.

@@ -27,17 +27,6 @@
 
 namespace anisodyn::analysis {
 
-// ---- pair search shared by the cluster stages -------------------------------------------------
-
-struct ClosePair {
-  std::size_t i = 0, j = 0;  // i < j, indices into the position list
-  Vec3 d;                    // r_j − r_i, minimum image
-};
-
-/// Every pair with |r_j − r_i| < cutoff (minimum image) through a cell list; positions need not be
-/// wrapped. Pairs are ordered by i, then j.
-std::vector<ClosePair> close_pairs(const std::vector<Vec3>& positions, const Box& box, double cutoff);
-
 // ---- E2: bonds and clusters ---------------------------------------------------------------------
 
 struct DipolarBondRule {

@@ -24,6 +24,8 @@ struct MsdSettings {
   std::string species;                 // "" = every species separately (chosen by the caller)
   MsdReference reference = MsdReference::Axes;
   int axis = -1;                       // body axis for director / particle_axis (0 T, 1 W, 2 L); −1 = largest U
+  std::string director_species;        // director reference of spheres: the species whose director they use
+                                       // ("" = the only anisotropic species of the file)
   Vec3 direction = Vec3::UnitZ();      // for MsdReference::Vector (a field direction)
   double lags_per_decade = 10.0;
   std::size_t max_origins = 0;         // 0 = every origin
@@ -55,6 +57,7 @@ struct MsdResult {
   std::string ngp_constant;           // what the total NGP used
   std::vector<Vec3> directors;        // per replica (director reference)
   std::vector<double> director_order; // per replica
+  std::string director_species;       // whose director it is, when not the analysed species' own (spheres)
   std::size_t samples = 0;            // replicas, or blocks for one replica
   bool uniform_frames = false;
   const MsdComponent& component(const std::string& name) const;
@@ -66,6 +69,10 @@ class MsdAnalysis {
   /// Adds one replica (particles of species `species_index`, all if < 0).
   void accumulate(const Trajectory& t, int species_index);
   MsdResult compute() const;
+  /// The mean MSD of component `name` (MsdResult::component names) in each error sample (replica,
+  /// or block of time origins for one replica) on the lag classes: what the errors and the
+  /// jackknife of quantities derived from the MSD (passive microrheology) are made of.
+  CurveSamples samples_of(const std::string& name) const;
 
  private:
   struct Impl;
@@ -85,5 +92,11 @@ class MsdAnalysis {
 /// Direction of the director of body axis `axis` (−1: the axis with the largest U), from the Q
 /// tensor averaged over all frames; `order` receives its U.
 Vec3 run_averaged_director(const Trajectory& t, const std::vector<std::size_t>& members, int& axis, double& order);
+
+/// The species whose director is the reference of species `analysed` (spec 50 §1.1): the species
+/// itself when it is anisotropic; for spheres (no axes of their own) the anisotropic species of the
+/// file — the one named by `director_species` when there are several. A name given for an
+/// anisotropic species, an unknown or spherical one, or no anisotropic species → InputError.
+int director_species_of(const Trajectory& t, int analysed, const std::string& director_species, const std::string& config_file);
 
 }  // namespace anisodyn::analysis

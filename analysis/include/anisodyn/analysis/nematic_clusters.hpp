@@ -13,7 +13,7 @@
 //   6. repeat 2–5 until a pass changes nothing (at most max_passes = 20 passes).
 //
 // Use: NematicClusterAnalysis a(settings, replicas); a.accumulate(trajectory, species) per
-// replica; NematicClusterResult r = a.compute(). Every frame with t ≥ t_min is a configuration.
+// replica; NematicClusterResult r = a.compute(). Every loaded frame (the stage's time window) is a configuration.
 #include <array>
 #include <cstddef>
 #include <limits>
@@ -43,10 +43,9 @@ struct NematicClusterSettings {
   double k_perp = 0.0;        // |r^⊥| < K_⊥ (length)
   int max_passes = 20;
   std::size_t cos_bins = 20;  // histogram of |cos θ| between cluster directors and box axes
-  double t_min = -std::numeric_limits<double>::infinity();  // frames before this time are skipped
 };
 
-/// Reads species, axis (T | W | L, required), K1, K2, K_par, K_perp (required), cos_bins, t_min.
+/// Reads species, axis (T | W | L, required), K1, K2, K_par, K_perp (required), cos_bins.
 NematicClusterSettings parse_nematic_cluster_settings(io::ConfigNode& cfg);
 /// K1 outside (0, 1], K2 outside (−1/2, 1], K_∥ or K_⊥ not positive, … → InputError naming the key.
 void check_nematic_cluster_settings(const NematicClusterSettings& s, const std::string& config_file = "");

@@ -6,8 +6,9 @@
 //     (Decision of §4.2: the factor 2 counts both sides of the reference plane, so g_∥, g_⊥ → 1);
 //   ρ_r(s)   = ⟨N_s in [s, s+Δs)⟩ / (A Δs) / (N/V) along x, y, z, with A = V/L_s the slab area
 //     (V^{2/3} of §1.7 for a cubic box), Δs = L/50 by default.
-// Pairs use the minimum image (O(N²) per frame, fine for a few thousand particles). A bin whose
-// shell or cylinder does not fit inside the minimum-image cell is NaN. Curves are averaged over
+// Pairs use the minimum image and come from the cell lists of pair_search.hpp (the pairs within
+// reach of a histogram, each once). A bin whose shell or cylinder does not fit inside the
+// minimum-image cell is NaN. Curves are averaged over
 // the selected frames, then over replicas with the standard error over replicas; a single
 // replica is split into blocks of frames for the error.
 #include <array>
@@ -24,16 +25,6 @@ namespace anisodyn::analysis {
 
 enum class PairReference { None, Field, Director };
 
-/// Frames [first, last] with a stride (last = npos: the final frame).
-struct FrameSelection {
-  std::size_t first = 0, last = static_cast<std::size_t>(-1), stride = 1;
-  /// The selected frame indices of a trajectory with `frames` frames (InputError if none).
-  std::vector<std::size_t> indices(std::size_t frames, const std::string& config_file) const;
-};
-
-/// Reads `frames: {first, last, stride}` (all optional).
-FrameSelection parse_frame_selection(io::ConfigNode& cfg, const std::string& key);
-
 struct PairStructureSettings {
   std::vector<std::pair<std::string, std::string>> pairs;  // empty = each species with itself
   double dr = 0.05;
@@ -45,13 +36,13 @@ struct PairStructureSettings {
   double cylinder_radius = 0.5;          // R_∥ (spec 50 §4.2 Decision for cubes: 0.5σ)
   double slab_half_height = 0.5;         // h_⊥
   std::size_t slab_bins = 50;            // Δs = L / slab_bins
-  FrameSelection frames;
   std::size_t single_replica_blocks = 10;
   double director_threshold = 0.40;      // a director needs mean U above this (spec 50 §3.1)
 };
 
 /// Reads the keys of anisodyn-structure (pairs, dr, r_max, reference, direction, axis,
-/// director_species, cylinder_radius, slab_half_height, slab_bins, frames).
+/// director_species, cylinder_radius, slab_half_height, slab_bins). Frames are chosen by the
+/// stage's time window (frame_window.hpp); the former `frames` key is refused with that advice.
 PairStructureSettings parse_structure_settings(io::ConfigNode& cfg);
 
 struct PairCurves {

@@ -14,8 +14,8 @@
 // of the D_long fit window (t_N; the last lag with ≥ 20 independent origins by default), and J
 // continues beyond with the slope η_∞⁻¹. The MSD, D_long and its fit window come
 // from MsdAnalysis (msd.hpp) over the tracer species and the replicas; the moduli errors are a
-// jackknife over replicas (over 10 blocks of time origins for a single replica), with D_long refitted
-// in every leave-one-out sample.
+// jackknife over its per-replica MSD curves (over 10 blocks of time origins for a single replica),
+// with D_long refitted in every leave-one-out sample.
 //
 // Use: PassiveMicrorheology p(settings, replicas); p.accumulate(trajectory) per replica;
 // PassiveResult r = p.compute(). The closed-form functions mason_moduli / evans_moduli work on
@@ -27,7 +27,6 @@
 #include <utility>
 #include <vector>
 
-#include "anisodyn/analysis/lag_grid.hpp"
 #include "anisodyn/analysis/msd.hpp"
 #include "anisodyn/analysis/replica_statistics.hpp"
 #include "anisodyn/analysis/trajectory.hpp"
@@ -94,15 +93,10 @@ class PassiveMicrorheology {
   PassiveResult compute() const;
 
  private:
-  void add_samples(const Trajectory& t, const std::vector<std::size_t>& tracers);
-
   PassiveMicrorheologySettings s_;
-  std::size_t replicas_;
   std::string config_file_;
-  MsdAnalysis msd_;
-  LagGrid grid_;           // the lag classes of the first replica, shared by every sample
-  CurveSamples samples_;   // per-replica (or per-block) 3-D MSD on grid_
-  std::size_t tracers_ = 0, seen_ = 0;
+  MsdAnalysis msd_;        // the tracer MSD; its per-replica (per-block) curves feed the jackknife
+  std::size_t tracers_ = 0;
 };
 
 /// The tracer radius: `settings.radius` if given, else half the diameter of the species' sphere

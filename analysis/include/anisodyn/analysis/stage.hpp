@@ -6,6 +6,10 @@
 //
 // A stage's body reads its parameters from `cfg`, calls `cfg.finish()` (unknown keys → exit 2)
 // before the heavy work, fills `out` and returns; the driver then writes all files atomically.
+//
+// The driver also reads the time window every stage takes (`window`, frame_window.hpp): each_replica
+// loads only the window's frames and records the window in the output. A stage states how many
+// frames it needs in TrajectoryNeeds::min_frames.
 #include <functional>
 #include <string>
 #include <type_traits>
@@ -24,10 +28,12 @@ struct StageRun {
   io::ConfigNode& cfg;
   std::vector<std::string> inputs;  // expanded, in order
   AnalysisOutput& out;
+  FrameWindow window;               // the configuration's `window` (not given = every frame)
 
   /// "replica k/n: path" on stderr (unless --quiet).
   void report_replica(std::size_t k, const std::string& path) const;
-  /// Loads and checks every replica in turn (see for_each_replica), with progress.
+  /// Loads and checks every replica in turn (see for_each_replica), the frames of the window only,
+  /// with progress; records the window in the output.
   std::vector<double> each_replica(const TrajectoryNeeds& needs,
                                    const std::function<void(const Trajectory&, std::size_t)>& fn,
                                    double time_tolerance = 0.05) const;

@@ -12,6 +12,9 @@ namespace anisodyn {
 /// Builds the configuration described by `cfg`. With `existing`, the new particles are inserted
 /// randomly into that state (its box and species are kept; new species are appended).
 /// Every problem with the request is reported as an InputError naming the JSON path.
-State build_configuration(io::ConfigNode& cfg, const std::optional<State>& existing, std::uint64_t seed, std::uint64_t replica = 0);
+/// With diffusion_origins given, it receives {species name: where its diffusion coefficients came
+/// from} for the species the configuration defines (see parse_species).
+State build_configuration(io::ConfigNode& cfg, const std::optional<State>& existing, std::uint64_t seed, std::uint64_t replica = 0,
+                          nlohmann::json* diffusion_origins = nullptr);
 
 }  // namespace anisodyn

@@ -100,6 +100,9 @@ class DmcEngine {
   const std::vector<double>& body_displacement() const { return body_displacement_; }
   const std::vector<double>& body_rotation() const { return body_rotation_; }
   const std::vector<double>& rotation_vectors() const { return rotation_vector_; }
+  /// Zeroes the per-particle accumulators, so that they count from the start of production (the
+  /// preliminary balancing cycles are not part of the trajectory).
+  void reset_accumulators();
 
   /// Everything needed to continue bit-for-bit (the configuration itself is saved separately).
   nlohmann::json checkpoint() const;

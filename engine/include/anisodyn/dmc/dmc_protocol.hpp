@@ -31,6 +31,14 @@ struct FrameRules {
   double log_per_decade = 0.0;
   std::int64_t after_switch_every = 0;  // denser frames for a while after each field switch
   std::int64_t after_switch_for = 0;
+  double log_cycles_per_decade = 0.0;   // logarithmic in cycles after each switch (and the start) …
+  std::int64_t log_cycles_restart = 0;  // … restarted every this many cycles (0: once per switch)
+
+  /// Whether the logarithmic cycle rule writes a frame `since_switch` cycles after the last switch:
+  /// m = since_switch (mod restart) is 0 or one of round(10^(k/per_decade)), k = 0, 1, … (1, 2, 3,
+  /// 4, 6, 7, 10, … cycles at 5 per decade), so that every restart block holds lags from one cycle
+  /// up, wherever a time window later cuts the run.
+  bool log_cycle_due(std::int64_t since_switch) const;
 };
 
 struct TracerSettings {
@@ -66,6 +74,12 @@ struct DmcProtocol {
   /// Diffusion coefficients replacing those of the input's species table.
   std::map<std::string, std::pair<std::optional<Vec3>, std::optional<Vec3>>> diffusion;
   std::map<std::string, Shape> diffusion_shape;  // shapes of entries taken from species files (checked against the input)
+  nlohmann::json diffusion_origins = nlohmann::json::object();  // species name → where its override came from
+  // Keys whose effect depends on the input's species (checked by check_protocol_species): the path
+  // of the first preliminary-run key given, of the first rotation-move key given, and of each
+  // species' rotational diffusion given.
+  std::string preliminary_key, rotation_move_key;
+  std::map<std::string, std::string> rotational_diffusion_keys;
 };
 
 /// Parses the configuration. Names of species are checked later against the input state

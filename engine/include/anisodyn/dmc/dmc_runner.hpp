@@ -74,7 +74,7 @@ class DmcRunner {
   DmcCursor cursor_;
   std::vector<double> dt_;
   std::vector<TrialCounts> preliminary_totals_, production_totals_, window_;
-  std::vector<double> window_balance_;
+  BalanceSums window_balance_, production_balance_;  // realised balance per observation row, and over production
   std::int64_t window_cycles_ = 0;
   bool attributes_written_ = false;
   int tracer_species_ = -1;

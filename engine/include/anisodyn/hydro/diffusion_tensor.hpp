@@ -33,6 +33,7 @@ struct DiffusionTensorResult {
   Mat6 resistance = Mat6::Zero();     // extrapolated, about the centre of diffusion
   Mat6 diffusion = Mat6::Zero();      // its inverse (k_BT = 1)
   Vec3 centre_of_diffusion = Vec3::Zero();  // extrapolated, relative to the body centre
+  Mat6 quadratic_diffusion = Mat6::Zero();  // from the element-wise quadratic extrapolation instead
   Vec6 relative_error = Vec6::Zero();  // |linear − quadratic| / linear for each diagonal D
   double relative_coupling = 0.0;      // largest |D_tr,ij|/√(D_tt,ii D_rr,jj)
 
@@ -49,12 +50,14 @@ struct ShellSeries {
 /// Bead radii for an extrapolation: `count` values spaced geometrically from the finest (whose
 /// shell has about max_beads beads) up to size_ratio times it. The coarsest must resolve the body
 /// (σ_b ≤ thinnest/4); InputError when max_beads is too small for that.
-std::vector<double> choose_bead_radii(const HydroShape& shape, const ShellSeries& series);
+std::vector<double> choose_bead_radii(const HydroShape& shape, const ShellSeries& series,
+                                      ShellConstruction construction = &shell_beads);
 
 using ShellProgress = std::function<void(const ShellSolution&, std::size_t index, std::size_t total)>;
 
 DiffusionTensorResult compute_diffusion_tensor(const HydroShape& shape, const std::vector<double>& bead_radii,
                                                const ResistanceOptions& options = {},
-                                               const ShellProgress& progress = nullptr);
+                                               const ShellProgress& progress = nullptr,
+                                               ShellConstruction construction = &shell_beads);
 
 }  // namespace anisodyn::hydro

@@ -2,8 +2,9 @@
 // Configuration of anisodyn-hydro (docs/hydro.md):
 //   {"species": [{"name": "board_W1", "shape": {"type": "cuboid", "edges": [1, 1, 12]}}, …],
 //    "shells": {"count": 5, "max_beads": 6000, "size_ratio": 2.0},   // defaults; per species too
-//    "symmetry": true}
-// or explicit "bead_radii": [σ_1, σ_2, …] (≥ 3) instead of "shells". Shape types: sphere {diameter},
+//    "symmetry": true, "construction": "surface_grid"}   // default; per species too
+// or explicit "bead_radii": [σ_1, σ_2, …] (≥ 3) instead of "shells". Constructions: surface_grid
+// (shell_beads), cell_centres (cell_centre_beads). Shape types: sphere {diameter},
 // cube {edge}, cuboid {edges}, spherocylinder {length, diameter} (as for the engines), plus
 // ellipsoid {semi_axes}, cylinder {length, diameter}, sphere_union {centres, diameters}.
 #include <string>
@@ -21,6 +22,8 @@ struct HydroSpeciesJob {
   nlohmann::json shape_json;  // as given, copied to the species file
   HydroShape shape;
   std::vector<double> bead_radii;  // coarsest first
+  std::string construction_name = "surface_grid";
+  ShellConstruction construction = &shell_beads;
 };
 
 struct HydroConfig {

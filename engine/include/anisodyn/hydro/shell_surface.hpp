@@ -49,8 +49,21 @@ struct HydroShape {
 /// The hydrodynamic shape of a geometry-module shape (sphere, cuboid, spherocylinder).
 HydroShape hydro_shape_of(const Shape& shape);
 
-/// Bead centres of the shell at bead radius sigma_b.
+/// Bead centres of the shell at bead radius sigma_b (the default construction, "surface_grid").
 std::vector<Vec3> shell_beads(const HydroShape& shape, double sigma_b);
+
+/// A way of laying beads on a surface: the bead centres of the shell at bead radius σ_b.
+using ShellConstruction = std::vector<Vec3> (*)(const HydroShape& shape, double sigma_b);
+
+/// The second construction, "cell_centres" (cell_centre_shell.cpp), an independent check on the
+/// first: the surface is cut into cells about 2σ_b across and one bead sits at the centre of each,
+/// so no bead lies on an edge or a rim. Cuboid faces are cut into rectangles; ellipsoids into the
+/// six faces of an equi-angular cubed sphere, mapped onto the ellipsoid; cylinders into rectangles on
+/// the side and annular sectors on the end disks. Other shapes: InputError.
+std::vector<Vec3> cell_centre_beads(const HydroShape& shape, double sigma_b);
+
+/// Number of intervals of about 2σ_b that fit a length (at least one).
+int bead_intervals(double length, double sigma_b);
 
 /// The smallest body dimension (thickness): bead sizes are quoted relative to it.
 double thinnest_dimension(const HydroShape& shape);

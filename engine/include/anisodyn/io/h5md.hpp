@@ -107,6 +107,13 @@ class H5mdWriter {
   std::unique_ptr<Impl> impl_;
 };
 
+/// Frames first, first + stride, …, `count` of them: one regular HDF5 hyperslab along the frame
+/// axis, so that a bulk read holds only the selected frames in memory.
+struct FrameSlice {
+  std::size_t first = 0, count = 0, stride = 1;
+  std::size_t frame(std::size_t k) const { return first + k * stride; }
+};
+
 /// Reads files written by H5mdWriter (and other H5MD 1.1 files with particle group "all" and an
 /// orthorhombic box). Problems with the file → InputError(path, "<HDF5 path>", "…") (exit 2).
 class H5mdReader {
@@ -134,8 +141,12 @@ class H5mdReader {
   /// ("position", "image", "orientation" or an extra element) converted to float64, row-major
   /// [F × N × width]; `width` is returned. A missing element or a bad shape → InputError.
   std::vector<double> read_element_frames(const std::string& element, std::size_t& width) const;
+  /// The same for the frames of `frames` only, [count × N × width].
+  std::vector<double> read_element_frames(const std::string& element, std::size_t& width, const FrameSlice& frames) const;
   /// All frames of an integer per-particle element ("species", "id"), [F × N].
   std::vector<std::int64_t> read_integer_element_frames(const std::string& element) const;
+  /// The same for the frames of `frames` only, [count × N].
+  std::vector<std::int64_t> read_integer_element_frames(const std::string& element, const FrameSlice& frames) const;
   /// Box edges of every frame (vector or diagonal-matrix form), [F × 3].
   std::vector<double> box_edges_frames() const;
 

@@ -98,6 +98,11 @@ class ConfigNode {
   /// Path of a child key: "species[0].mass".
   std::string child_path(const std::string& key) const;
 
+  /// For a key that acts only in some modes: unless `applies`, its presence is an InputError saying
+  /// that it has no effect `reason` (e.g. "unless balance.mode is \"per_cycle\""), since a key that
+  /// is silently ignored hides a mistake. Marks the key as known either way.
+  void reject_unless(bool applies, const std::string& key, const std::string& reason);
+
   /// InputError(file, path.key, expected [+ ", got <value>" when the key is present]).
   /// An empty key names this node itself.
   [[noreturn]] void fail(const std::string& key, const std::string& expected) const;

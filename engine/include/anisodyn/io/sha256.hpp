@@ -1,28 +1,33 @@
 #pragma once
 // SHA-256 (FIPS 180-4) of files and byte strings, as lowercase hex. Used for provenance records
 // (`inputs: [{path, sha256}]`) and by the manifest runner to decide whether an output is current.
-#include <cstdint>
+// The digest comes from OpenSSL's libcrypto (EVP interface), which picks the CPU's SHA extensions
+// when present; this header keeps OpenSSL out of the includes of every client.
+#include <cstddef>
+#include <memory>
 #include <string>
 #include <string_view>
 
 namespace anisodyn::io {
 
-/// Incremental hasher: update() any number of times, then hex_digest() once.
+/// Incremental hasher: update() any number of times, then hex_digest().
 class Sha256 {
  public:
   Sha256();
+  ~Sha256();
+  Sha256(Sha256&&) noexcept;
+  Sha256& operator=(Sha256&&) noexcept;
+
   void update(const void* data, std::size_t size);
   void update(std::string_view data) { update(data.data(), data.size()); }
-  /// Finishes the hash and returns 64 lowercase hex digits; the hasher must not be updated afterwards.
+  /// Finishes the hash and returns 64 lowercase hex digits (the same digits on every later call);
+  /// the hasher must not be updated afterwards.
   std::string hex_digest();
 
  private:
-  void compress(const unsigned char* block);
-  std::uint32_t h_[8];
-  unsigned char buffer_[64];
-  std::size_t buffered_ = 0;
-  std::uint64_t total_bytes_ = 0;
-  bool finished_ = false;
+  struct Context;  // the OpenSSL digest context
+  std::unique_ptr<Context> context_;
+  std::string digest_;  // set by the first hex_digest()
 };
 
 std::string sha256_hex(std::string_view data);

@@ -3,10 +3,12 @@
 //   {"name": "board", "shape": {"type": "cuboid", "edges": [1, 3.46, 12]},
 //    "mass": 1, "D_trans": [Dt_T, Dt_W, Dt_L], "D_rot": [Dr_T, Dr_W, Dr_L]}
 // or, with the diffusion coefficients from a species file written by anisodyn-hydro:
-//   {"name": "board", "diffusion_from": {"file": "manifests/data/boards_L12.species.json",
+//   {"name": "board", "diffusion_from": {"file": "manifests/data/boards_L12_bead_model.species.json",
 //                                        "species": "board_W1"}}
-// (the shape comes from the file; if "shape" is given too it must match). A relative file path is
-// taken from the working directory, else from the directory of the configuration file.
+// (the shape comes from the file; if "shape" is given too it must match). "file" may also be a list
+// of species files searched in order, the first that holds the species giving its values (e.g. the
+// published tensors where they exist, else a bead-model table). A relative file path is taken from
+// the working directory, else from the directory of the configuration file.
 // Shape types: sphere {diameter}, cuboid {edges: [T, W, L]}, cube {edge},
 // spherocylinder {length, diameter}. Diffusion coefficients default to zero (MC does not need
 // them; the dynamics engines check that they are set).
@@ -21,16 +23,21 @@ struct DiffusionFromFile {
   Shape shape;
   Vec3 D_trans = Vec3::Zero();
   Vec3 D_rot = Vec3::Zero();
+  /// Where the values came from, for provenance: {"file", "species", and the entry's "source" if any}.
+  nlohmann::json origin;
 };
 
 /// Same kind and dimensions (to 1e-9 relative).
 bool same_shape(const Shape& a, const Shape& b);
 
-/// Reads {"file", "species"}; checks the file's shape against expected_shape when given.
+/// Reads {"file" (a path or a list of paths), "species"}; checks the entry's shape against
+/// expected_shape when given.
 DiffusionFromFile read_diffusion_from(io::ConfigNode node, const std::optional<Shape>& expected_shape);
 
 Shape parse_shape(io::ConfigNode node);
-Species parse_species(io::ConfigNode node);
+/// With diffusion_origin given, it receives where the diffusion coefficients came from (the origin
+/// of diffusion_from, or "configuration" for explicit values, null for none).
+Species parse_species(io::ConfigNode node, nlohmann::json* diffusion_origin = nullptr);
 /// The array at `key`; names must be unique.
 SpeciesTable parse_species_table(io::ConfigNode& parent, const std::string& key);
 /// JSON form accepted by parse_species (for writing parameters back out).

@@ -1,0 +1,1 @@
+anisodyn_add_script_test(inapplicable_keys inapplicable_keys.py)

@@ -1,0 +1,1 @@
+anisodyn_add_script_test(mdanalysis_helper mdanalysis_helper.py)

@@ -1,0 +1,1 @@
+anisodyn_add_script_test(runner_eta runner_eta.py)
