@@ -4,6 +4,7 @@ numpy, independently of the C++ estimators: mean, block-averaging error, and the
 integrated autocorrelation time (FFT, Sokal window). Prints a Markdown table row per phase.
 
 usage: summarise_mc.py RESULT.h5 [RESULT.h5 ...]   (run with /usr/bin/python3: needs h5py)
+The slow validation tests import phases().
 """
 import json
 import sys
@@ -44,29 +45,43 @@ def series(f, name):
 
 
 def describe(x):
+    """Mean, error (the larger of the two estimates), blocking error, autocorrelation error, tau_int in samples."""
     eb = blocking_error(x.copy())
     ea, tau = autocorrelation_error(x)
     return x.mean(), max(eb, ea), eb, ea, tau
 
 
-for path in sys.argv[1:]:
+def phases(path):
+    """Per phase of an anisodyn-mc output: label, cycles, and describe() of eta and of each species' U_T, U_W, U_L."""
+    out = []
     with h5py.File(path) as f:
-        state = json.loads(f["anisodyn/checkpoint/engine_state"][()])
-        summary = state["runner"]["summary"]
+        summary = json.loads(f["anisodyn/checkpoint/engine_state"][()])["runner"]["summary"]
         species = [s.decode() if isinstance(s, bytes) else s for s in f["parameters/species/name"][...]]
         steps, eta = series(f, "packing_fraction")
         for ph in summary["phases"]:
             sel = (steps > ph["first_cycle"]) & (steps <= ph["last_cycle"])
-            m, e, eb, ea, tau = describe(eta[sel, 0])
-            row = f"| {path} | {ph['label']} | {ph['first_cycle']}–{ph['last_cycle']} | {m:.5f} ± {e:.5f} ({100 * e / m:.2f}%; blocking {eb:.5f}, autocorr. {ea:.5f}, τ_int {tau * (steps[1] - steps[0]):.0f} cycles)"
+            row = {"label": ph["label"], "first_cycle": ph["first_cycle"], "last_cycle": ph["last_cycle"],
+                   "phase": ph.get("phase", ""), "sample_every": int(steps[1] - steps[0]),
+                   "eta": describe(eta[sel, 0]), "order": {}}
             for sp in species:
                 s_steps, order = series(f, f"order_{sp}")
-                if s_steps is None:
-                    continue
-                sel_o = (s_steps > ph["first_cycle"]) & (s_steps <= ph["last_cycle"])
-                parts = []
-                for k, axis in enumerate("TWL"):
-                    mo, eo, *_ = describe(order[sel_o, k])
-                    parts.append(f"U_{axis} = {mo:.4f} ± {eo:.4f}")
-                row += f" | {sp}: " + ", ".join(parts) + f" | {ph.get('phase', '')}"
+                if s_steps is not None:
+                    sel_o = (s_steps > ph["first_cycle"]) & (s_steps <= ph["last_cycle"])
+                    row["order"][sp] = [describe(order[sel_o, k]) for k in range(3)]
+            out.append(row)
+    return out
+
+
+def main():
+    for path in sys.argv[1:]:
+        for ph in phases(path):
+            m, e, eb, ea, tau = ph["eta"]
+            row = f"| {path} | {ph['label']} | {ph['first_cycle']}–{ph['last_cycle']} | {m:.5f} ± {e:.5f} ({100 * e / m:.2f}%; blocking {eb:.5f}, autocorr. {ea:.5f}, τ_int {tau * ph['sample_every']:.0f} cycles)"
+            for sp, stats in ph["order"].items():
+                parts = [f"U_{axis} = {mo:.4f} ± {eo:.4f}" for axis, (mo, eo, *_) in zip("TWL", stats)]
+                row += f" | {sp}: " + ", ".join(parts) + f" | {ph['phase']}"
             print(row + " |")
+
+
+if __name__ == "__main__":
+    main()

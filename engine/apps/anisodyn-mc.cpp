@@ -63,37 +63,41 @@ int main(int argc, char** argv) {
     parameters["seed"] = protocol.seed;
     if (protocol.replica) parameters["replica"] = protocol.replica;
 
-    State state = io::H5mdReader(input).read_frame(-1);
+    // Resuming starts from the checkpoint's last frame; otherwise from the input's. Either way the
+    // starting state is read once.
     const std::string checkpoint_path = opt.output + ".checkpoint.h5";
-    std::optional<std::pair<State, nlohmann::json>> resume;
     std::unique_ptr<io::H5mdReader> checkpoint_reader;
+    nlohmann::json engine_state;
+    std::size_t frames_kept = 0;
+    State state;
     if (std::filesystem::exists(checkpoint_path)) {
       checkpoint_reader = std::make_unique<io::H5mdReader>(checkpoint_path);
       if (checkpoint_reader->parameters() != parameters)
         throw InputError(checkpoint_path, "/parameters", "a checkpoint of the same configuration; this one was written with "
                                                          "different parameters: delete it to start afresh");
+      const auto j = checkpoint_reader->checkpoint();
+      if (!j) throw InputError(checkpoint_path, "/anisodyn/checkpoint", "an engine state");
+      engine_state = *j;
+      frames_kept = engine_state.at("frames_kept").get<std::size_t>();
+      state = checkpoint_reader->read_frame(static_cast<std::ptrdiff_t>(frames_kept));
+    } else {
+      state = io::H5mdReader(input).read_frame(-1);
     }
-
-    require_minimum_image(state, input);
+    const std::string& state_file = checkpoint_reader ? checkpoint_path : input;
+    require_minimum_image(state, state_file);
 
     std::unique_ptr<McRunner> runner;
     try {
-      if (checkpoint_reader) {
-        const auto engine_state = checkpoint_reader->checkpoint();
-        if (!engine_state) throw InputError(checkpoint_path, "/anisodyn/checkpoint", "an engine state");
-        const std::size_t kept = engine_state->at("frames_kept").get<std::size_t>();
-        state = checkpoint_reader->read_frame(static_cast<std::ptrdiff_t>(kept));
-        runner = std::make_unique<McRunner>(state, protocol, opt.quiet);
-        std::vector<State> frames;
-        for (std::size_t f = 0; f < kept; ++f) frames.push_back(checkpoint_reader->read_frame(static_cast<std::ptrdiff_t>(f)));
-        runner->restore(engine_state->at("runner"), read_observables(*checkpoint_reader), std::move(frames));
-        if (!opt.quiet) std::fprintf(stderr, "anisodyn-mc: resuming from %s at cycle %lld\n", checkpoint_path.c_str(),
-                                     static_cast<long long>(state.step));
-      } else {
-        runner = std::make_unique<McRunner>(state, protocol, opt.quiet);
-      }
+      runner = std::make_unique<McRunner>(state, protocol, opt.quiet);
     } catch (const InputError& e) {
-      throw InputError(input, "/particles/all", e.what());
+      throw InputError(state_file, "/particles/all", e.what());
+    }
+    if (checkpoint_reader) {
+      std::vector<State> frames;
+      for (std::size_t f = 0; f < frames_kept; ++f) frames.push_back(checkpoint_reader->read_frame(static_cast<std::ptrdiff_t>(f)));
+      runner->restore(engine_state.at("runner"), read_observables(*checkpoint_reader), std::move(frames));
+      if (!opt.quiet) std::fprintf(stderr, "anisodyn-mc: resuming from %s at cycle %lld\n", checkpoint_path.c_str(),
+                                   static_cast<long long>(state.step));
     }
     const io::H5mdHeader header{"anisodyn", "", "anisodyn user", parameters, io::make_provenance(info.name, opt.argv, opt.inputs), state.species};
     auto checkpoint = [&] {

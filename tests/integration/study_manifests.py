@@ -5,8 +5,8 @@ response times > 0; a pulled tracer's friction ratio gamma_eff/gamma_0 >= 1 - 4 
 speed the tracer up); uniaxial order parameters U in [0, 1]; fractions (X_c, p_b) in [0, 1]. Every engine trajectory (H5MD) must have finite positions, unit quaternions,
 strictly increasing frame times and acceptances in [0, 1]; a DMC run that balanced several species
 at equilibrium must report a realised balance within 5% of 1 (a sanity bound for short smoke runs;
-the 0.5% acceptance check is the full-size run in docs/validation.md). Prints each manifest's
-wall time.
+the 0.5% acceptance check is the slow test validation_dmc_balance, docs/validation.md). Prints
+each manifest's wall time.
 
 argv: [1] build bin dir, [2] scratch dir, [3] source dir, [4] optional: the one manifest to run
 (name with or without .json; ctest registers one test per manifest, study_manifests.cmake),

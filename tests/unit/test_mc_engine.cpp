@@ -1,11 +1,13 @@
 // MC engine against closed forms: ideal-gas NPT, a free cuboid in the orientational field, free
-// rotation (uniform orientations), and hard-sphere sweeps that never create an overlap. The
+// rotation (uniform orientations), and hard-sphere sweeps that never create an overlap; a rejected
+// squeeze or volume move leaves every position bit-identical. The
 // sampled averages are compared within 4 standard errors, each bounded from above by
 // markov_chain_error_bound (tests/support) with the chain's crossing time derived from its moves.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 #include "anisodyn/core/error.hpp"
 #include "anisodyn/core/statistics.hpp"
@@ -26,6 +28,31 @@ State gas_of_points(std::size_t n, double edge) {
   for (std::size_t i = 0; i < n; ++i)
     s.particles.add(0, Vec3(rng.uniform() * edge, rng.uniform() * edge, rng.uniform() * edge), Quat::Identity(), static_cast<std::int64_t>(i));
   return s;
+}
+
+/// Hard spheres (d = 1) on a simple cubic lattice of spacing a.
+State sphere_lattice(int side, double a) {
+  State s;
+  s.box = Box(Vec3::Constant(side * a));
+  s.species.push_back(Species{"hs", Shape::sphere(1.0), 1.0, Vec3::Zero(), Vec3::Zero()});
+  for (int i = 0; i < side; ++i)
+    for (int j = 0; j < side; ++j)
+      for (int k = 0; k < side; ++k)
+        s.particles.add(0, a * Vec3(i + 0.5, j + 0.5, k + 0.5), Quat::Identity(), (i * side + j) * side + k);
+  return s;
+}
+
+/// The same lattice melted by NVT sweeps, so that the coordinates are generic doubles (a
+/// rescaling and its inverse then round differently from the identity).
+State melted_spheres(int side, double a) {
+  State s = sphere_lattice(side, a);
+  McEngine mc(s, RngState{3, 0, 0, 4});
+  for (int c = 0; c < 200; ++c) mc.cycle();
+  return s;
+}
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
 }
 
 /// Cycles for ln V to cross its width: Var ln V = ψ₁(N + 1) < 1/N for p(V) ∝ V^N e^{−βPV}, against
@@ -154,14 +181,7 @@ TEST(McEngine, FreeCuboidOrientationsBecomeUniform) {
 }
 
 TEST(McEngine, DenseHardSpheresNeverOverlap) {
-  State s;
-  const int side = 6;
-  const double a = 1.05;  // simple cubic lattice, η ≈ 0.45
-  s.box = Box(Vec3::Constant(side * a));
-  s.species.push_back(Species{"hs", Shape::sphere(1.0), 1.0, Vec3::Zero(), Vec3::Zero()});
-  for (int i = 0; i < side; ++i)
-    for (int j = 0; j < side; ++j)
-      for (int k = 0; k < side; ++k) s.particles.add(0, a * Vec3(i + 0.5, j + 0.5, k + 0.5), Quat::Identity(), i * 36 + j * 6 + k);
+  State s = sphere_lattice(6, 1.05);  // η ≈ 0.45
   McEngine mc(s, RngState{1, 0, 0, 4});
   mc.set_pressure(3.0);
   MoveCounters mark = mc.counters();
@@ -177,6 +197,54 @@ TEST(McEngine, DenseHardSpheresNeverOverlap) {
   EXPECT_GT(n.translate_accepted[0], 0);
   EXPECT_LT(n.translate_accepted[0], n.translate_tried[0]);
   EXPECT_GT(n.volume_accepted, 0);
+}
+
+TEST(McEngine, RejectedRescaleLeavesEveryPositionBitIdentical) {
+  State s = melted_spheres(6, 1.05);
+  const Particles before = s.particles;
+  const Vec3 edges = s.box.edges();
+  // The test has power: scaling back by the inverse factor would not restore these coordinates.
+  const double f = std::cbrt(0.98), back = 1.0 / f;
+  int inexact = 0;
+  for (double x : before.x) inexact += (x * f) * back != x;
+  ASSERT_GT(inexact, 0);
+
+  McEngine mc(s, RngState{8, 0, 0, 4});
+  ASSERT_FALSE(mc.try_rescale(0.98 * s.box.volume()));  // 2% denser than a dense fluid: overlaps
+  EXPECT_TRUE(same_bits(s.particles.x, before.x));
+  EXPECT_TRUE(same_bits(s.particles.y, before.y));
+  EXPECT_TRUE(same_bits(s.particles.z, before.z));
+  EXPECT_EQ(s.box.edges(), edges);
+  EXPECT_FALSE(mc.overlap().first_overlap().has_value());
+}
+
+TEST(McEngine, RejectedVolumeMovesLeaveEveryPositionBitIdentical) {
+  // At βP = 1000 every compression passes the Metropolis test, and with zero particle moves the
+  // spheres stay put, so the box soon cannot shrink without an overlap: from then on volume moves
+  // are rejected by the overlap test, after rescaling. A cycle without an accepted volume move must
+  // leave the positions exactly as they were.
+  for (BoxMoves moves : {BoxMoves::Isotropic, BoxMoves::PerAxis}) {
+    State s = melted_spheres(6, 1.05);
+    McEngine mc(s, RngState{17, 0, 0, 4});
+    mc.set_pressure(1000.0, moves);
+    mc.move_sizes().translate[0] = 0.0;
+    mc.move_sizes().log_volume = 0.02;
+    std::int64_t rejected = 0;
+    for (int c = 0; c < 300; ++c) {
+      const Particles before = s.particles;
+      const Vec3 edges = s.box.edges();
+      const MoveCounters mark = mc.counters();
+      mc.cycle();
+      const MoveCounters w = mc.counters().since(mark);
+      if (w.volume_accepted > 0) continue;
+      rejected += w.volume_tried;
+      ASSERT_TRUE(same_bits(s.particles.x, before.x) && same_bits(s.particles.y, before.y) && same_bits(s.particles.z, before.z))
+          << "cycle " << c;
+      ASSERT_EQ(s.box.edges(), edges) << "cycle " << c;
+    }
+    EXPECT_GT(rejected, 100);
+    EXPECT_FALSE(mc.overlap().first_overlap().has_value());
+  }
 }
 
 TEST(McEngine, RejectsOverlappingInput) {

@@ -144,17 +144,21 @@ void McEngine::rescale_positions(const Vec3& factor) {
 
 bool McEngine::any_overlap_after_rescale(const Vec3& new_edges) {
   const Vec3 old_edges = state_.box.edges();
-  const Vec3 factor = new_edges.cwiseQuotient(old_edges);
-  rescale_positions(factor);
+  Particles& p = state_.particles;
+  // Keep the old positions: scaling back by the inverse factor is off in the last bits.
+  saved_x_ = p.x;
+  saved_y_ = p.y;
+  saved_z_ = p.z;
+  rescale_positions(new_edges.cwiseQuotient(old_edges));
   state_.box.set_edges(new_edges);
   overlap_.rebuild(state_);
-  const bool bad = overlap_.first_overlap().has_value();
-  if (bad) {
-    rescale_positions(old_edges.cwiseQuotient(new_edges));
-    state_.box.set_edges(old_edges);
-    overlap_.rebuild(state_);
-  }
-  return bad;
+  if (!overlap_.first_overlap()) return false;
+  p.x.swap(saved_x_);
+  p.y.swap(saved_y_);
+  p.z.swap(saved_z_);
+  state_.box.set_edges(old_edges);
+  overlap_.rebuild(state_);
+  return true;
 }
 
 void McEngine::volume_move() {

@@ -73,6 +73,8 @@ class McEngine {
  private:
   void particle_move();
   void volume_move();
+  /// Rescales the box and positions to `new_edges`; if that creates an overlap, restores the
+  /// previous box and the saved positions bit for bit and returns true.
   bool any_overlap_after_rescale(const Vec3& new_edges);
   void rescale_positions(const Vec3& factor);
   /// Whether the hard cores forbid moving particle i from (r_old, rot_old) to (r_new, rot_new).
@@ -87,6 +89,7 @@ class McEngine {
   BoxMoves box_moves_ = BoxMoves::Isotropic;
   MoveSizes moves_;
   MoveCounters counters_;
+  std::vector<double> saved_x_, saved_y_, saved_z_;  // positions before a trial rescaling
 };
 
 }  // namespace anisodyn

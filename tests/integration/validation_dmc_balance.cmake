@@ -1,0 +1,1 @@
+anisodyn_add_script_test(validation_dmc_balance validation_dmc_balance.py SLOW)

@@ -1,0 +1,1 @@
+anisodyn_add_script_test(validation_dmc_hs_timestep validation_dmc_hs_timestep.py SLOW)
