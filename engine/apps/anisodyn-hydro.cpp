@@ -21,6 +21,12 @@ using namespace anisodyn::hydro;
 
 namespace {
 
+std::string format_percent(double fraction) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g%%", 100.0 * fraction);
+  return buf;
+}
+
 nlohmann::json to_json(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
 nlohmann::json to_json(const Mat6& m) {
@@ -33,12 +39,17 @@ nlohmann::json to_json(const Mat6& m) {
   return rows;
 }
 
-/// The default construction keeps its original wording; the extrapolation is named in it.
-std::string method_of(const HydroSpeciesJob& job) {
+/// The default construction keeps its original wording; the fit used is named in it, and under
+/// "auto" that it was chosen by its smaller error estimate.
+std::string method_of(const HydroSpeciesJob& job, const DiffusionTensorResult& r) {
   std::string method = std::string("shell model, RPY mobility with overlap correction, resistance about the centre of "
                                    "diffusion extrapolated ") +
-                       (job.extrapolation == ExtrapolationOrder::Linear ? "linearly" : "quadratically") +
+                       (r.extrapolation == ExtrapolationOrder::Linear ? "linearly" : "quadratically") +
                        " to zero bead radius";
+  if (job.extrapolation == ExtrapolationRule::Auto)
+    method += " (extrapolation auto: the fit with the smaller error estimate, linear " +
+              format_percent(r.relative_error_of(ExtrapolationOrder::Linear).maxCoeff()) + " vs quadratic " +
+              format_percent(r.relative_error_of(ExtrapolationOrder::Quadratic).maxCoeff()) + ")";
   if (job.construction != &shell_beads) method += "; shell construction " + job.construction_name;
   return method;
 }
@@ -57,8 +68,9 @@ nlohmann::json species_entry(const HydroSpeciesJob& job, const DiffusionTensorRe
           {"D_trans", to_json(r.D_trans())},
           {"D_rot", to_json(r.D_rot())},
           {"hydro",
-           {{"method", method_of(job)},
+           {{"method", method_of(job, r)},
             {"extrapolation", extrapolation_name(r.extrapolation)},
+            {"extrapolation_rule", extrapolation_name(r.rule)},
             {"diffusion_tensor", to_json(r.diffusion)},
             {"resistance_tensor", to_json(r.resistance)},
             {"centre_of_diffusion", to_json(r.centre_of_diffusion)},
@@ -69,8 +81,9 @@ nlohmann::json species_entry(const HydroSpeciesJob& job, const DiffusionTensorRe
 }
 
 void print_summary(const std::string& name, const DiffusionTensorResult& r) {
-  std::printf("%-16s D_trans = %.5g %.5g %.5g   D_rot = %.5g %.5g %.5g   extrapolation error ≤ %.2g%%   coupling %.1e\n",
+  std::printf("%-16s D_trans = %.5g %.5g %.5g   D_rot = %.5g %.5g %.5g   %s extrapolation%s, error ≤ %.2g%%   coupling %.1e\n",
               name.c_str(), r.D_trans().x(), r.D_trans().y(), r.D_trans().z(), r.D_rot().x(), r.D_rot().y(), r.D_rot().z(),
+              extrapolation_name(r.extrapolation).c_str(), r.rule == ExtrapolationRule::Auto ? " (auto)" : "",
               100.0 * r.relative_error.maxCoeff(), r.relative_coupling);
   std::fflush(stdout);
 }
@@ -81,7 +94,8 @@ int main(int argc, char** argv) {
   const io::ToolInfo info{"anisodyn-hydro", "infinite-dilution diffusion tensors of rigid particles from shell models",
                           "Configuration keys: species[] {name, shape, shells | bead_radii, construction, extrapolation}, shells "
                           "{count, max_beads, size_ratio}, bead_radii, symmetry, construction (surface_grid | cell_centres), "
-                          "extrapolation (linear | quadratic). The output is a species file: JSON, or HDF5 when it ends "
+                          "extrapolation (auto | linear | quadratic; auto, the default, picks per species the fit with the smaller "
+                          "error estimate). The output is a species file: JSON, or HDF5 when it ends "
                           "in .h5. Units: lengths in the shape's unit ℓ, D_trans in ℓ²/τ, D_rot in rad²/τ, with "
                           "τ = ηℓ³/k_BT. See docs/hydro.md."};
   return io::run_tool(argc, argv, info, [&](io::CommonOptions& opt) {

@@ -13,6 +13,8 @@
 //  - species files round-trip through JSON and HDF5 and feed species definitions.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <random>
 
 #include "anisodyn/core/error.hpp"
@@ -250,8 +252,8 @@ TEST(Extrapolation, EachFitRecoversItsPolynomialAndTheCubicNeedsFourRadii) {
 TEST(DiffusionTensor, TheChosenExtrapolationIsTheOutputAndItsErrorEstimateComparesWithTheNextFit) {
   const HydroShape s = HydroShape::sphere(1.0);
   const std::vector<double> radii = choose_bead_radii(s, {4, 1500, 2.0});
-  const auto lin = compute_diffusion_tensor(s, radii, {}, nullptr, &shell_beads, ExtrapolationOrder::Linear);
-  const auto quad = compute_diffusion_tensor(s, radii, {}, nullptr, &shell_beads, ExtrapolationOrder::Quadratic);
+  const auto lin = compute_diffusion_tensor(s, radii, {}, nullptr, &shell_beads, ExtrapolationRule::Linear);
+  const auto quad = compute_diffusion_tensor(s, radii, {}, nullptr, &shell_beads, ExtrapolationRule::Quadratic);
   EXPECT_EQ(lin.extrapolation, ExtrapolationOrder::Linear);
   EXPECT_EQ(quad.extrapolation, ExtrapolationOrder::Quadratic);
   ASSERT_TRUE(quad.cubic_diffusion.has_value());
@@ -267,10 +269,41 @@ TEST(DiffusionTensor, TheChosenExtrapolationIsTheOutputAndItsErrorEstimateCompar
   }
   // Three radii: no cubic, so the quadratic fit is checked against the line.
   const std::vector<double> three(radii.begin(), radii.begin() + 3);
-  const auto q3 = compute_diffusion_tensor(s, three, {}, nullptr, &shell_beads, ExtrapolationOrder::Quadratic);
+  const auto q3 = compute_diffusion_tensor(s, three, {}, nullptr, &shell_beads, ExtrapolationRule::Quadratic);
   EXPECT_FALSE(q3.cubic_diffusion.has_value());
   EXPECT_EQ(q3.error_reference_of(ExtrapolationOrder::Quadratic), "linear");
   EXPECT_NEAR(q3.relative_error[0], std::abs(q3.linear_diffusion(0, 0) / q3.quadratic_diffusion(0, 0) - 1.0), 1e-14);
+}
+
+TEST(Extrapolation, AutoPicksTheFitWithTheSmallerErrorEstimateAndLinearOnATie) {
+  EXPECT_EQ(kDefaultExtrapolation, ExtrapolationRule::Auto);
+  EXPECT_EQ(extrapolation_name(ExtrapolationRule::Auto), "auto");
+  EXPECT_EQ(choose_extrapolation(0.004, 0.001), ExtrapolationOrder::Quadratic);
+  EXPECT_EQ(choose_extrapolation(0.007, 0.53), ExtrapolationOrder::Linear);
+  EXPECT_EQ(choose_extrapolation(0.0012, 0.0012), ExtrapolationOrder::Linear);  // tie: the simpler fit
+  EXPECT_EQ(choose_extrapolation(0.0012, std::nan("")), ExtrapolationOrder::Linear);
+  EXPECT_EQ(choose_extrapolation(0.0012, std::numeric_limits<double>::infinity()), ExtrapolationOrder::Linear);
+}
+
+TEST(DiffusionTensor, AutoOutputsTheFitWhoseOwnErrorEstimateIsSmaller) {
+  // Two bodies at coarse shells, one of which should go each way; whichever way each goes, the
+  // output must be the fit with the smaller largest-diagonal estimate, with that fit's estimate.
+  int chosen[2] = {0, 0};
+  for (const HydroShape& s : {HydroShape::sphere(1.0), HydroShape::cuboid(Vec3(1.0, 1.0, 4.0)),
+                              HydroShape::ellipsoid(Vec3(1.5, 1.5, 0.3)), HydroShape::ellipsoid(Vec3(1.0, 1.0, 2.0))}) {
+    const auto a = compute_diffusion_tensor(s, choose_bead_radii(s, {4, 1200, 2.0}), {}, nullptr, &shell_beads,
+                                            ExtrapolationRule::Auto);
+    const double lin = a.relative_error_of(ExtrapolationOrder::Linear).maxCoeff();
+    const double quad = a.relative_error_of(ExtrapolationOrder::Quadratic).maxCoeff();
+    EXPECT_EQ(a.rule, ExtrapolationRule::Auto);
+    EXPECT_EQ(a.extrapolation, quad < lin ? ExtrapolationOrder::Quadratic : ExtrapolationOrder::Linear);
+    EXPECT_TRUE(a.diffusion.isApprox(a.diffusion_of(a.extrapolation), 1e-14));
+    EXPECT_TRUE(a.relative_error.isApprox(a.relative_error_of(a.extrapolation), 1e-14));
+    EXPECT_NEAR(a.relative_error.maxCoeff(), std::min(lin, quad), 1e-15);
+    ++chosen[a.extrapolation == ExtrapolationOrder::Quadratic];
+  }
+  EXPECT_GT(chosen[0], 0) << "no body chose the line";
+  EXPECT_GT(chosen[1], 0) << "no body chose the parabola";
 }
 
 TEST(HydroConfig, ExtrapolationKeyAtTopLevelAndPerSpecies) {
@@ -287,8 +320,17 @@ TEST(HydroConfig, ExtrapolationKeyAtTopLevelAndPerSpecies) {
                                   {{"name", "b"}, {"shape", sphere}, {"bead_radii", radii}, {"extrapolation", "linear"}}}}};
     io::ConfigNode cfg(j, "h.json");
     const HydroConfig c = parse_hydro_config(cfg);
-    EXPECT_EQ(c.species[0].extrapolation, ExtrapolationOrder::Quadratic);
-    EXPECT_EQ(c.species[1].extrapolation, ExtrapolationOrder::Linear);
+    EXPECT_EQ(c.species[0].extrapolation, ExtrapolationRule::Quadratic);
+    EXPECT_EQ(c.species[1].extrapolation, ExtrapolationRule::Linear);
+  }
+  {
+    nlohmann::json j{{"extrapolation", "linear"},
+                     {"species", {{{"name", "a"}, {"shape", sphere}, {"bead_radii", radii}, {"extrapolation", "auto"}},
+                                  {{"name", "b"}, {"shape", sphere}, {"bead_radii", radii}}}}};
+    io::ConfigNode cfg(j, "h.json");
+    const HydroConfig c = parse_hydro_config(cfg);
+    EXPECT_EQ(c.species[0].extrapolation, ExtrapolationRule::Auto);
+    EXPECT_EQ(c.species[1].extrapolation, ExtrapolationRule::Linear);
   }
   nlohmann::json bad{{"extrapolation", "cubic"}, {"species", {{{"name", "a"}, {"shape", sphere}, {"bead_radii", radii}}}}};
   io::ConfigNode cfg(bad, "h.json");

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include "anisodyn/core/error.hpp"
@@ -76,7 +77,7 @@ std::vector<double> choose_bead_radii(const HydroShape& shape, const ShellSeries
 
 DiffusionTensorResult compute_diffusion_tensor(const HydroShape& shape, const std::vector<double>& bead_radii,
                                                const ResistanceOptions& options, const ShellProgress& progress,
-                                               ShellConstruction construction, ExtrapolationOrder extrapolation) {
+                                               ShellConstruction construction, ExtrapolationRule rule) {
   DiffusionTensorResult out;
   for (std::size_t k = 0; k < bead_radii.size(); ++k) {
     const auto start = std::chrono::steady_clock::now();
@@ -109,16 +110,27 @@ DiffusionTensorResult compute_diffusion_tensor(const HydroShape& shape, const st
       quadratic(i, j) = e.quadratic;
       if (e.cubic) cubic(i, j) = *e.cubic; else has_cubic = false;
     }
-  out.extrapolation = extrapolation;
+  out.linear_diffusion = linear.inverse();
+  out.quadratic_diffusion = quadratic.inverse();
+  if (has_cubic) out.cubic_diffusion = cubic.inverse();
+  out.rule = rule;
+  out.extrapolation = rule == ExtrapolationRule::Quadratic ? ExtrapolationOrder::Quadratic : ExtrapolationOrder::Linear;
+  if (rule == ExtrapolationRule::Auto) {
+    // A fit whose tensor is not positive has no meaningful estimate and is never chosen.
+    const auto estimate = [&](ExtrapolationOrder order) {
+      const Mat6& D = out.diffusion_of(order);
+      if (!D.allFinite() || D.diagonal().minCoeff() <= 0.0) return std::numeric_limits<double>::infinity();
+      return out.relative_error_of(order).maxCoeff();
+    };
+    out.extrapolation = choose_extrapolation(estimate(ExtrapolationOrder::Linear), estimate(ExtrapolationOrder::Quadratic));
+  }
+  const ExtrapolationOrder extrapolation = out.extrapolation;
   out.resistance = extrapolation == ExtrapolationOrder::Linear ? linear : quadratic;
   for (int a = 0; a < 3; ++a) {
     std::vector<double> y;
     for (const auto& s : out.shells) y.push_back(s.centre_of_diffusion[a]);
     out.centre_of_diffusion[a] = extrapolate_to_zero_size(sigma, y).intercept(extrapolation);
   }
-  out.linear_diffusion = linear.inverse();
-  out.quadratic_diffusion = quadratic.inverse();
-  if (has_cubic) out.cubic_diffusion = cubic.inverse();
   out.diffusion = out.diffusion_of(extrapolation);
   out.relative_error = out.relative_error_of(extrapolation);
   out.relative_coupling = relative_coupling(out.diffusion);

@@ -33,6 +33,19 @@ std::string extrapolation_name(ExtrapolationOrder order) {
   return order == ExtrapolationOrder::Linear ? "linear" : "quadratic";
 }
 
+std::string extrapolation_name(ExtrapolationRule rule) {
+  switch (rule) {
+    case ExtrapolationRule::Linear: return extrapolation_name(ExtrapolationOrder::Linear);
+    case ExtrapolationRule::Quadratic: return extrapolation_name(ExtrapolationOrder::Quadratic);
+    case ExtrapolationRule::Auto: break;
+  }
+  return "auto";
+}
+
+ExtrapolationOrder choose_extrapolation(double linear_error, double quadratic_error) {
+  return quadratic_error < linear_error ? ExtrapolationOrder::Quadratic : ExtrapolationOrder::Linear;
+}
+
 ZeroSizeExtrapolation extrapolate_to_zero_size(const std::vector<double>& sigma_b, const std::vector<double>& y) {
   if (sigma_b.size() != y.size()) throw InputError("extrapolation: one value per bead radius expected");
   const std::size_t distinct = std::set<double>(sigma_b.begin(), sigma_b.end()).size();

@@ -70,14 +70,14 @@ const ConstructionRegistration& parse_construction(io::ConfigNode& n, const std:
   n.fail("construction", "expected a known shell construction");
 }
 
-ExtrapolationOrder parse_extrapolation(io::ConfigNode& n, ExtrapolationOrder fallback) {
-  const ExtrapolationOrder orders[] = {ExtrapolationOrder::Linear, ExtrapolationOrder::Quadratic};
+ExtrapolationRule parse_extrapolation(io::ConfigNode& n, ExtrapolationRule fallback) {
+  const ExtrapolationRule orders[] = {ExtrapolationRule::Linear, ExtrapolationRule::Quadratic, ExtrapolationRule::Auto};
   std::vector<std::string> names;
   for (auto o : orders) names.push_back(extrapolation_name(o));
   const std::string name = n.choice("extrapolation", names, extrapolation_name(fallback));
   for (auto o : orders)
     if (name == extrapolation_name(o)) return o;
-  n.fail("extrapolation", "expected linear or quadratic");
+  n.fail("extrapolation", "expected linear, quadratic or auto");
 }
 
 /// Builds the coarsest allowed shell once, so that a construction that does not cover the shape
@@ -118,7 +118,7 @@ HydroConfig parse_hydro_config(io::ConfigNode& cfg) {
   HydroConfig out;
   out.use_symmetry = cfg.boolean("symmetry", true);
   const std::string default_construction = parse_construction(cfg, kConstructionRegistry[0].name).name;
-  const ExtrapolationOrder default_extrapolation = parse_extrapolation(cfg, kDefaultExtrapolation);
+  const ExtrapolationRule default_extrapolation = parse_extrapolation(cfg, kDefaultExtrapolation);
   ShellSeries defaults;
   if (auto s = cfg.optional_object("shells")) defaults = parse_shell_series(*s, defaults);
   std::optional<std::vector<double>> default_radii;

@@ -33,7 +33,8 @@ struct ShellSolution {
 
 struct DiffusionTensorResult {
   std::vector<ShellSolution> shells;
-  ExtrapolationOrder extrapolation = kDefaultExtrapolation;  // the fit behind resistance and diffusion
+  ExtrapolationRule rule = kDefaultExtrapolation;            // what was asked for
+  ExtrapolationOrder extrapolation = ExtrapolationOrder::Linear;  // the fit behind resistance and diffusion
   Mat6 resistance = Mat6::Zero();     // extrapolated, about the centre of diffusion
   Mat6 diffusion = Mat6::Zero();      // its inverse (k_BT = 1)
   Vec3 centre_of_diffusion = Vec3::Zero();  // extrapolated, relative to the body centre
@@ -76,6 +77,6 @@ DiffusionTensorResult compute_diffusion_tensor(const HydroShape& shape, const st
                                                const ResistanceOptions& options = {},
                                                const ShellProgress& progress = nullptr,
                                                ShellConstruction construction = &shell_beads,
-                                               ExtrapolationOrder extrapolation = kDefaultExtrapolation);
+                                               ExtrapolationRule extrapolation = kDefaultExtrapolation);
 
 }  // namespace anisodyn::hydro

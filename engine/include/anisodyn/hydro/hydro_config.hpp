@@ -3,7 +3,7 @@
 //   {"species": [{"name": "board_W1", "shape": {"type": "cuboid", "edges": [1, 1, 12]}}, …],
 //    "shells": {"count": 5, "max_beads": 6000, "size_ratio": 2.0},   // defaults; per species too
 //    "symmetry": true, "construction": "surface_grid",   // default; per species too
-//    "extrapolation": "linear"}                          // default (or "quadratic"); per species too
+//    "extrapolation": "auto"}                            // default (or "linear", "quadratic"); per species too
 // or explicit "bead_radii": [σ_1, σ_2, …] (≥ 3) instead of "shells". Constructions: surface_grid
 // (shell_beads), cell_centres (cell_centre_beads). Shape types: sphere {diameter},
 // cube {edge}, cuboid {edges}, spherocylinder {length, diameter} (as for the engines), plus
@@ -26,7 +26,7 @@ struct HydroSpeciesJob {
   std::vector<double> bead_radii;  // coarsest first
   std::string construction_name = "surface_grid";
   ShellConstruction construction = &shell_beads;
-  ExtrapolationOrder extrapolation = kDefaultExtrapolation;
+  ExtrapolationRule extrapolation = kDefaultExtrapolation;
 };
 
 struct HydroConfig {
