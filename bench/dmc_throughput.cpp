@@ -88,8 +88,8 @@ void BM_DmcHardSpheres1000(benchmark::State& bs) {
 }
 
 // Study A3's mixture. W* = 1 board D from boards_L12_bead_model.species.json (entry board_W1).
-const Species kBoardW1{"board", Shape::cuboid(1.0, 1.0, 12.0), 1.0, Vec3(0.0203862, 0.0203862, 0.0285304),
-                       Vec3(9.45332e-4, 9.45332e-4, 1.63248e-2)};
+const Species kBoardW1{"board", Shape::cuboid(1.0, 1.0, 12.0), 1.0, Vec3(0.0203767, 0.0203767, 0.0285088),
+                       Vec3(9.44021e-4, 9.44021e-4, 1.62628e-2)};
 const Species kSphere01{"hs", Shape::sphere(0.1), 1.0, Vec3::Constant(1.0 / (3.0 * M_PI * 0.1)), Vec3::Zero()};
 
 State a3_mixture(double eta, std::int64_t melt_cycles) {

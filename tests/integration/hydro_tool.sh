@@ -58,22 +58,35 @@ run_bad "unknown extrapolation" "o10.json.json.*species\[0\]\.extrapolation.*(on
 run_bad "construction that does not cover the shape" "o9.json.json.*species\[0\]\.construction.*cell_centres shell construction covers" \
   '{"species": [{"name": "x", "shape": {"type": "spherocylinder", "length": 2, "diameter": 1}, "construction": "cell_centres"}]}' o9.json
 
-# The second shell construction runs and says so in the method; the default's method is unchanged.
-# The extrapolation: linear by default, quadratic on request (per species); each species names its
-# fit, and its error estimate names the fit it is compared with (the next higher one).
+# The second shell construction runs and says so in the method; the default construction is not named.
+# The extrapolation: auto by default (the fit with the smaller error estimate), linear or quadratic
+# on request (per species); each species names its fit, and its error estimate names the fit it is
+# compared with (the next higher one).
 cat > cells.json <<'JSON'
 {"species": [{"name": "cube", "shape": {"type": "cube", "edge": 1}, "construction": "cell_centres"},
-             {"name": "cube_quadratic", "shape": {"type": "cube", "edge": 1}, "extrapolation": "quadratic"}],
+             {"name": "cube_quadratic", "shape": {"type": "cube", "edge": 1}, "extrapolation": "quadratic"},
+             {"name": "cube_linear", "shape": {"type": "cube", "edge": 1}, "extrapolation": "linear"}],
  "shells": {"count": 4, "max_beads": 1500}}
 JSON
 "$bin/anisodyn-hydro" -q --config cells.json --output cells.json.out.json || { echo "FAIL: cell_centres or quadratic does not run"; exit 1; }
 "$PYTHON" - <<'PY' || { echo "FAIL: construction or extrapolation in the species file"; exit 1; }
 import json
-cells, quad = json.load(open("cells.json.out.json"))["species"]
-lin = next(s for s in json.load(open("species.json"))["species"] if s["name"] == "cube")
+cells, quad, lin = json.load(open("cells.json.out.json"))["species"]
+auto = next(s for s in json.load(open("species.json"))["species"] if s["name"] == "cube")
 assert cells["hydro"]["method"].endswith("; shell construction cell_centres"), cells["hydro"]["method"]
-assert "construction" not in lin["hydro"]["method"], lin["hydro"]["method"]
+assert "construction" not in auto["hydro"]["method"], auto["hydro"]["method"]
+# The default: auto, which outputs one of the two fits, the one with the smaller error estimate.
+assert auto["hydro"]["extrapolation_rule"] == "auto", auto["hydro"]
+fit = auto["hydro"]["extrapolation"]
+assert fit in ("linear", "quadratic"), fit
+assert "(extrapolation auto: the fit with the smaller error estimate" in auto["hydro"]["method"], auto["hydro"]["method"]
+assert ("extrapolated linearly" if fit == "linear" else "extrapolated quadratically") in auto["hydro"]["method"]
+same = lin if fit == "linear" else quad
+assert all(abs(a / b - 1) < 1e-12 for a, b in zip(auto["D_rot"] + auto["D_trans"], same["D_rot"] + same["D_trans"]))
+err = lambda s: max(s["hydro"]["extrapolation_error"]["D_trans"] + s["hydro"]["extrapolation_error"]["D_rot"])
+assert abs(err(auto) - min(err(lin), err(quad))) <= 1e-9 * err(auto), (err(auto), err(lin), err(quad))
 assert lin["hydro"]["extrapolation"] == "linear", lin["hydro"]["extrapolation"]
+assert lin["hydro"]["extrapolation_rule"] == "linear", lin["hydro"]
 assert lin["hydro"]["method"].endswith("extrapolated linearly to zero bead radius"), lin["hydro"]["method"]
 assert lin["hydro"]["extrapolation_error"]["compared_with"] == "quadratic"
 assert quad["hydro"]["extrapolation"] == "quadratic"
