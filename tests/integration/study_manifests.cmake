@@ -17,7 +17,7 @@ set(_slow_smoke_manifests)
 set(_workers 2)
 file(GLOB _smoke_manifests CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/manifests/*-smoke.json)
 set(_manifests ${CMAKE_SOURCE_DIR}/manifests/quickstart.json ${_smoke_manifests})
-execute_process(COMMAND ${ANISODYN_SYSTEM_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/manifest_costs.py ${_manifests}
+execute_process(COMMAND ${ANISODYN_SYSTEM_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/../support/manifest_costs.py ${_manifests}
                 OUTPUT_VARIABLE _manifest_costs ERROR_QUIET)
 string(REPLACE "\n" ";" _manifest_costs "${_manifest_costs}")
 foreach(_line ${_manifest_costs})
