@@ -314,14 +314,8 @@ std::vector<double> for_each_replica(const std::vector<std::string>& paths, cons
   const io::FrameSlice frames = window_frames(needs, grid, paths.front());
   for (std::size_t k = 1; k < headers.size(); ++k) check_replica_times(headers.front(), headers[k], time_tolerance, frames);
   if (selected) *selected = {frames, grid};
-  std::vector<double> mean_time;
-  for (std::size_t k = 0; k < paths.size(); ++k) {
-    Trajectory t = load_trajectory(paths[k], needs, frames);
-    if (k == 0) mean_time.assign(t.frames, 0.0);
-    for (std::size_t f = 0; f < t.frames; ++f) mean_time[f] += t.time[f] / static_cast<double>(paths.size());
-    fn(t, k);
-  }
-  return mean_time;
+  for (std::size_t k = 0; k < paths.size(); ++k) fn(load_trajectory(paths[k], needs, frames), k);
+  return pick(grid, frames);  // the mean time of each analysed frame over the replicas
 }
 
 }  // namespace anisodyn::analysis
