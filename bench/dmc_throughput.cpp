@@ -27,6 +27,8 @@ void run_cycles(benchmark::State& bs, State state, const std::vector<double>& dt
   e.set_time_steps(dt);
   setup(e);
   std::int64_t trials = 0, accepted = 0;
+  const SkinList& lists = e.overlap().skin_lists();
+  const std::int64_t resets_before = lists.references_reset();
   for (auto _ : bs) {
     e.cycle();
     for (const auto& c : e.last_cycle()) {
@@ -37,6 +39,17 @@ void run_cycles(benchmark::State& bs, State state, const std::vector<double>& dt
   bs.counters["trials_per_s"] = benchmark::Counter(static_cast<double>(trials), benchmark::Counter::kIsRate);
   bs.counters["acceptance"] = static_cast<double>(accepted) / static_cast<double>(trials);
   bs.counters["eta"] = state.packing_fraction();
+  // How the skin lists serve (HardOverlap::use_skin_lists): re-references per trial and partners per list.
+  if (lists.any()) {
+    bs.counters["skin_resets_per_trial"] = static_cast<double>(lists.references_reset() - resets_before) / static_cast<double>(trials);
+    double partners = 0.0, bodies = 0.0;
+    for (std::size_t i = 0; i < state.particles.size(); ++i)
+      if (lists.has_reference(static_cast<std::int32_t>(i))) {
+        partners += static_cast<double>(lists.neighbors(static_cast<std::int32_t>(i)).size());
+        bodies += 1.0;
+      }
+    bs.counters["listed_partners"] = partners / bodies;
+  }
 }
 
 void BM_DmcBoards1000WithTracer(benchmark::State& bs) {

@@ -75,7 +75,7 @@ class Run:
         if not se < se_bound:
             self.failures.append(f"{label}: SE {se:.3g} >= bound {se_bound:.3g}")
 
-    def summary(self):
+    def failed_checks(self):
         """Prints the failed checks (or that all passed) and returns them; the test asserts there are none."""
         print("FAILED:\n  " + "\n  ".join(self.failures) if self.failures else "all checks passed")
         return self.failures

@@ -7,21 +7,12 @@
 #include "anisodyn/geometry/overlap.hpp"
 #include "anisodyn/interactions/hard_overlap.hpp"
 #include "anisodyn/mc/mc_engine.hpp"
+#include "brute_force_search.hpp"
 
 using namespace anisodyn;
+using anisodyn::testing_support::brute_force_overlaps;
 
 namespace {
-
-bool brute_force_overlaps(const State& s, std::size_t i, const Vec3& r, const Mat3& rot) {
-  const Shape& a = s.species[static_cast<std::size_t>(s.particles.species[i])].shape;
-  for (std::size_t j = 0; j < s.particles.size(); ++j) {
-    if (j == i) continue;
-    const Shape& b = s.species[static_cast<std::size_t>(s.particles.species[j])].shape;
-    const Vec3 t = s.box.min_image(s.particles.position(j) - r);
-    if (overlap(a, rot, b, s.particles.orientation(j).toRotationMatrix(), t)) return true;
-  }
-  return false;
-}
 
 void compare_trials(const State& s, const HardOverlap& ho, Rng& rng, int trials, double step) {
   int hits = 0;

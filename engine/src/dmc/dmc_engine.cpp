@@ -46,6 +46,28 @@ void DmcEngine::set_time_steps(const std::vector<double>& dt) {
     translate_cap_[s] = step_sizes(state_.species[s].D_trans, dt[s]);
     rotate_cap_[s] = anisotropic_[s] ? step_sizes(state_.species[s].D_rot, dt[s]) : Vec3::Zero();
   }
+  size_skin_lists();
+}
+
+void DmcEngine::size_skin_lists() {
+  // A half-skin of kSkinMoves largest moves: a body's list then serves many trials before it
+  // leaves its skin (a random walk needs ~kSkinMoves² steps), while the grown bodies stay close
+  // to the real ones so lists hold a few partners.
+  constexpr double kSkinMoves = 4.0;
+  const std::size_t ns = state_.species.size();
+  std::vector<double> want(ns, 0.0);
+  for (std::size_t s = 0; s < ns && s < dt_.size(); ++s) {
+    if (!(dt_[s] > 0.0)) continue;
+    const Mat3 swing = quat_from_rotation_vector(rotate_cap_[s]).toRotationMatrix();
+    want[s] = kSkinMoves * motion_bound(state_.species[s].shape, translate_cap_[s], Mat3::Identity(), swing);
+  }
+  const std::vector<double>& have = skin_request_;
+  bool keep = have.size() == ns;
+  for (std::size_t s = 0; keep && s < ns; ++s)
+    keep = (want[s] == 0.0) == (have[s] == 0.0) && want[s] <= 2.0 * have[s] && have[s] <= 2.0 * want[s];
+  if (keep) return;
+  skin_request_ = want;
+  overlap_.use_skin_lists(std::move(want));
 }
 
 void DmcEngine::set_dipoles(const DipoleSettings& dipoles, const Vec3& direction) {

@@ -32,6 +32,29 @@ double Shape::volume() const {
   return 0.0;
 }
 
+Shape Shape::grown(double t) const {
+  Shape s = *this;
+  if (kind == ShapeKind::Cuboid) s.edges.array() += 2.0 * t;
+  else s.diameter += 2.0 * t;
+  return s;
+}
+
+double motion_bound(const Shape& shape, const Vec3& dr, const Mat3& from, const Mat3& to) {
+  // A body point at c (body frame) moves by dr + (to − from)c, and |(to − from)c| is at most
+  // Σ_k |c_k| |to_k − from_k| over the body axes k: the translation plus each axis's swing
+  // times the body's half-extent along it. A spherocylinder is its axis segment grown by its
+  // radius, so only the segment's end points count; a sphere only translates.
+  double bound = dr.norm();
+  switch (shape.kind) {
+    case ShapeKind::Sphere: break;
+    case ShapeKind::Cuboid:
+      for (int k = 0; k < 3; ++k) bound += 0.5 * shape.edges[k] * (to.col(k) - from.col(k)).norm();
+      break;
+    case ShapeKind::Spherocylinder: bound += 0.5 * shape.length * (to.col(2) - from.col(2)).norm(); break;
+  }
+  return bound;
+}
+
 const char* shape_kind_name(ShapeKind kind) {
   switch (kind) {
     case ShapeKind::Sphere: return "sphere";

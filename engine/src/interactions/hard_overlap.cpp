@@ -1,6 +1,7 @@
 #include "anisodyn/interactions/hard_overlap.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "anisodyn/core/error.hpp"
@@ -49,6 +50,7 @@ void HardOverlap::rebuild(const State& state) {
   std::vector<double> self(static_cast<std::size_t>(nspecies_));
   for (int s = 0; s < nspecies_; ++s) self[static_cast<std::size_t>(s)] = cutoff(s, s);
   cells_.build(state.box, p.x, p.y, p.z, p.species, self, expected_counts_);
+  if (skin_.any()) rebuild_skin_lists();
 }
 
 void HardOverlap::inserted(std::int32_t i) {
@@ -57,52 +59,155 @@ void HardOverlap::inserted(std::int32_t i) {
   rot_.resize(p.size());
   rot_[ui] = p.orientation(ui).toRotationMatrix();
   cells_.insert(i, p.species[ui], p.position(ui));
+  if (skin_.lists(p.species[ui])) rereference(i);
 }
+
+namespace {
+/// Calls test(kernel) with the overlap kernel for bodies of shapes (sa, rot) and sb: kernel(j, d, r2)
+/// says whether sa at the origin overlaps body j of shape sb at d. The common pairs get their
+/// kernel inlined into the candidate loop; every other registered pair uses the generic dispatch.
+template <class Test>
+bool with_pair_kernel(const Shape& sa, const Mat3& rot, const Shape& sb, const std::vector<Mat3>& rotations, Test&& test) {
+  auto rotation_of = [&](std::int32_t j) -> const Mat3& { return rotations[static_cast<std::size_t>(j)]; };
+  if (sa.kind == ShapeKind::Sphere && sb.kind == ShapeKind::Sphere) {
+    // The cut-off is the contact distance and candidates have r² ≤ rc²: every candidate overlaps.
+    return test([](std::int32_t, const Vec3&, double) { return true; });
+  }
+  if (sa.kind == ShapeKind::Cuboid && sb.kind == ShapeKind::Cuboid) {
+    const Vec3 ha = sa.half_extents(), hb = sb.half_extents();
+    // Cheap exclusion before the 15-axis test: B lies inside its circumsphere, so if B's centre
+    // is farther from box A than B's circumradius they cannot touch (and vice versa). Each check
+    // is one OCSI distance (9 multiply-adds); the margin keeps round-off from excluding contact.
+    const double ra2 = (1.0 + 1e-12) * ha.squaredNorm(), rb2 = (1.0 + 1e-12) * hb.squaredNorm();
+    return test([&](std::int32_t j, const Vec3& d, double) {
+      const Mat3& rj = rotation_of(j);
+      if (cuboid_sphere_dmin2(rot, ha, d) > rb2 || cuboid_sphere_dmin2(rj, hb, Vec3(-d)) > ra2) return false;
+      return overlap_cuboid_cuboid(ha, rot, hb, rj, d);
+    });
+  }
+  if (sa.kind == ShapeKind::Cuboid && sb.kind == ShapeKind::Sphere) {
+    const Vec3 ha = sa.half_extents();
+    const double rb = 0.5 * sb.diameter;
+    return test([&](std::int32_t, const Vec3& d, double) { return overlap_cuboid_sphere(rot, ha, d, rb); });
+  }
+  if (sa.kind == ShapeKind::Sphere && sb.kind == ShapeKind::Cuboid) {
+    const Vec3 hb = sb.half_extents();
+    const double ra = 0.5 * sa.diameter;
+    return test([&](std::int32_t j, const Vec3& d, double) { return overlap_cuboid_sphere(rotation_of(j), hb, Vec3(-d), ra); });
+  }
+  return test([&](std::int32_t j, const Vec3& d, double) { return overlap(sa, rot, sb, rotation_of(j), d); });
+}
+}  // namespace
 
 template <class F>
 bool HardOverlap::for_each_overlap(std::int32_t i, const Vec3& r, const Mat3& rot, std::int32_t first_j, F&& on_overlap) const {
   const auto& species = state_->species;
   const int a = state_->particles.species[static_cast<std::size_t>(i)];
   const Shape& sa = species[static_cast<std::size_t>(a)].shape;
+  // Listed partners are complete for this placement only while it stays within i's skin.
+  const bool use_list = skin_.lists(a) && skin_.has_reference(i) && skin_.within_skin(i, sa, a, state_->box, r, rot);
   for (int b = 0; b < nspecies_; ++b) {
     const Shape& sb = species[static_cast<std::size_t>(b)].shape;
     const double rc = cutoff(a, b);
-    // The common pairs get their kernel inlined into the candidate loop; every other registered
-    // pair goes through the generic dispatcher.
-    auto scan = [&](auto&& kernel) {
-      return cells_.visit(b, r, rc, [&](std::int32_t j, const Vec3& d, double r2) {
+    auto test = [&](auto&& kernel) {
+      auto candidate = [&](std::int32_t j, const Vec3& d, double r2) {
         return j != i && j >= first_j && kernel(j, d, r2) && on_overlap(j);
-      });
+      };
+      if (use_list && skin_.pair_listed(a, b)) return visit_listed(i, b, r, rc, candidate);
+      return cells_.visit(b, r, rc, candidate);
     };
-    bool stopped;
-    if (sa.kind == ShapeKind::Sphere && sb.kind == ShapeKind::Sphere) {
-      // The cut-off is the contact distance and the cell list keeps r² ≤ rc²: every candidate overlaps.
-      stopped = scan([](std::int32_t, const Vec3&, double) { return true; });
-    } else if (sa.kind == ShapeKind::Cuboid && sb.kind == ShapeKind::Cuboid) {
-      const Vec3 ha = sa.half_extents(), hb = sb.half_extents();
-      // Cheap exclusion before the 15-axis test: B lies inside its circumsphere, so if B's centre
-      // is farther from box A than B's circumradius they cannot touch (and vice versa). Each check
-      // is one OCSI distance (9 multiply-adds); the margin keeps round-off from excluding contact.
-      const double ra2 = (1.0 + 1e-12) * ha.squaredNorm(), rb2 = (1.0 + 1e-12) * hb.squaredNorm();
-      stopped = scan([&](std::int32_t j, const Vec3& d, double) {
-        const Mat3& rj = rot_[static_cast<std::size_t>(j)];
-        if (cuboid_sphere_dmin2(rot, ha, d) > rb2 || cuboid_sphere_dmin2(rj, hb, Vec3(-d)) > ra2) return false;
-        return overlap_cuboid_cuboid(ha, rot, hb, rj, d);
-      });
-    } else if (sa.kind == ShapeKind::Cuboid && sb.kind == ShapeKind::Sphere) {
-      const Vec3 ha = sa.half_extents();
-      const double rb = 0.5 * sb.diameter;
-      stopped = scan([&](std::int32_t, const Vec3& d, double) { return overlap_cuboid_sphere(rot, ha, d, rb); });
-    } else if (sa.kind == ShapeKind::Sphere && sb.kind == ShapeKind::Cuboid) {
-      const Vec3 hb = sb.half_extents();
-      const double ra = 0.5 * sa.diameter;
-      stopped = scan([&](std::int32_t j, const Vec3& d, double) { return overlap_cuboid_sphere(rot_[static_cast<std::size_t>(j)], hb, Vec3(-d), ra); });
-    } else {
-      stopped = scan([&](std::int32_t j, const Vec3& d, double) { return overlap(sa, rot, sb, rot_[static_cast<std::size_t>(j)], d); });
-    }
-    if (stopped) return true;
+    if (with_pair_kernel(sa, rot, sb, rot_, test)) return true;
   }
   return false;
+}
+
+template <class F>
+bool HardOverlap::visit_listed(std::int32_t i, int b, const Vec3& r, double rc, F&& f) const {
+  const Particles& p = state_->particles;
+  const Vec3& L = state_->box.edges();
+  const Vec3& inv_L = state_->box.inverse_edges();
+  for (std::int32_t j : skin_.neighbors(i)) {
+    const auto uj = static_cast<std::size_t>(j);
+    if (p.species[uj] != b) continue;
+    // The separation is formed exactly as the cell list forms it (partner minus the query moved
+    // by a whole box edge), so both searches hand the kernels bit-identical vectors.
+    const Vec3 pj(p.x[uj], p.y[uj], p.z[uj]);
+    Vec3 q = r;
+    for (int k = 0; k < 3; ++k) {
+      const double n = std::nearbyint((pj[k] - r[k]) * inv_L[k]);
+      if (n > 0.0) q[k] = r[k] + L[k];
+      else if (n < 0.0) q[k] = r[k] - L[k];
+    }
+    const double dx = pj.x() - q.x(), dy = pj.y() - q.y(), dz = pj.z() - q.z();
+    const double r2 = dx * dx + dy * dy + dz * dz;
+    if (r2 > rc * rc) continue;
+    if (f(j, Vec3(dx, dy, dz), r2)) return true;
+  }
+  return false;
+}
+
+void HardOverlap::use_skin_lists(std::vector<double> half_skin) {
+  // Sphere–sphere pairs keep the cell grid: its cut-off is already the contact distance, so a
+  // list would hold the same candidates. A species in no listed pair needs no references.
+  const auto ns = static_cast<std::size_t>(nspecies_);
+  half_skin.resize(ns, 0.0);
+  std::vector<char> listed(ns * ns, 0);
+  std::vector<char> used(ns, 0);
+  for (std::size_t a = 0; a < ns; ++a)
+    for (std::size_t b = 0; b < ns; ++b) {
+      const bool spheres = !state_->species[a].shape.is_anisotropic() && !state_->species[b].shape.is_anisotropic();
+      listed[a * ns + b] = half_skin[a] > 0.0 && half_skin[b] > 0.0 && !spheres;
+      used[a] = used[a] || listed[a * ns + b];
+    }
+  for (std::size_t a = 0; a < ns; ++a)
+    if (!used[a]) half_skin[a] = 0.0;
+  skin_.configure(std::move(half_skin), std::move(listed));
+  if (skin_.any()) rebuild_skin_lists();
+}
+
+void HardOverlap::rebuild_skin_lists() {
+  skin_.clear();
+  const Particles& p = state_->particles;
+  for (std::size_t ui = 0; ui < p.size(); ++ui) {
+    const auto i = static_cast<std::int32_t>(ui);
+    if (skin_.lists(p.species[ui])) skin_.reset_reference(i, p.position(ui), rot_[ui]);
+  }
+  // References equal current placements here, so each pair is found from its lower index.
+  for (std::size_t ui = 0; ui < p.size(); ++ui)
+    if (skin_.lists(p.species[ui])) link_partners(static_cast<std::int32_t>(ui), static_cast<std::int32_t>(ui) + 1);
+}
+
+void HardOverlap::rereference(std::int32_t i) {
+  const auto ui = static_cast<std::size_t>(i);
+  skin_.reset_reference(i, state_->particles.position(ui), rot_[ui]);
+  link_partners(i, 0);
+}
+
+void HardOverlap::link_partners(std::int32_t i, std::int32_t first_j) {
+  const auto& species = state_->species;
+  const Box& box = state_->box;
+  const int a = state_->particles.species[static_cast<std::size_t>(i)];
+  // The grown bodies get a relative margin so that round-off in the skin test and here can only
+  // list more pairs, never fewer.
+  auto grown_half_skin = [&](int s) { return skin_.half_skin(s) * (1.0 + 1e-9) + 1e-12; };
+  const double ta = grown_half_skin(a);
+  const Shape ga = species[static_cast<std::size_t>(a)].shape.grown(ta);
+  const Vec3& ri = skin_.reference_position(i);
+  const Mat3& Ri = skin_.reference_rotation(i);
+  for (int b = 0; b < nspecies_; ++b) {
+    if (!skin_.pair_listed(a, b)) continue;
+    const double tb = grown_half_skin(b);
+    const Shape gb = species[static_cast<std::size_t>(b)].shape.grown(tb);
+    // A partner's reference lies within tb of where it is now, so its current centre is within
+    // the grown bodies' cut-off plus tb of i's reference.
+    const double reach = cutoff(a, b) + ta + 2.0 * tb;
+    cells_.visit(b, ri, reach, [&](std::int32_t j, const Vec3&, double) {
+      if (j == i || j < first_j || !skin_.has_reference(j)) return false;
+      const Vec3 d = box.min_image(skin_.reference_position(j) - ri);
+      if (overlap(ga, Ri, gb, skin_.reference_rotation(j), d)) skin_.link(i, j);
+      return false;
+    });
+  }
 }
 
 bool HardOverlap::overlaps(std::int32_t i, const Vec3& r, const Mat3& rot) const {
@@ -118,6 +223,9 @@ int HardOverlap::count_overlaps(std::int32_t i, const Vec3& r, const Mat3& rot) 
 void HardOverlap::moved(std::int32_t i, const Vec3& r, const Mat3& rot) {
   rot_[static_cast<std::size_t>(i)] = rot;
   cells_.move(i, r);
+  const int a = state_->particles.species[static_cast<std::size_t>(i)];
+  if (skin_.lists(a) && !skin_.within_skin(i, state_->species[static_cast<std::size_t>(a)].shape, a, state_->box, r, rot))
+    rereference(i);
 }
 
 std::optional<std::pair<std::int32_t, std::int32_t>> HardOverlap::first_overlap() const {

@@ -119,6 +119,9 @@ class DmcEngine {
   static bool metropolis(double dU, double u) { return dU <= 0.0 || u < std::exp(-dU); }
   void commit(std::int32_t i, const Vec3& r, const Int3& image, const Quat& q, const Mat3& rot_new);
   void accumulate_rotation_vectors(std::size_t i, const Mat3& old_rot, const Mat3& new_rot);
+  /// Skin lists for the anisotropic species, sized from the current moves (kept while the moves
+  /// stay within a factor two of those they were sized for, so per-cycle δt changes are free).
+  void size_skin_lists();
 
   State& state_;
   Rng rng_;
@@ -127,6 +130,7 @@ class DmcEngine {
   std::vector<double> dt_;
   std::vector<Vec3> translate_cap_, rotate_cap_;
   std::vector<char> anisotropic_;
+  std::vector<double> skin_request_;  // half-skins last asked of overlap_
   OrientationalField field_;
   bool field_on_ = false;
   DipoleSettings dipoles_;

@@ -36,7 +36,15 @@ struct Shape {
   double volume() const;
   /// Whether the body has an orientation at all (spheres don't rotate).
   bool is_anisotropic() const { return kind != ShapeKind::Sphere; }
+  /// A body of the same kind containing every point within distance t of this one (t ≥ 0):
+  /// exactly that set for spheres and spherocylinders, its bounding box for cuboids.
+  Shape grown(double t) const;
 };
+
+/// An upper bound on how far any point of the body moves from placement (0, from) to (dr, to)
+/// (rotation matrices, columns = body axes): every point of the moved body lies within this
+/// distance of the body in its first placement.
+double motion_bound(const Shape& shape, const Vec3& dr, const Mat3& from, const Mat3& to);
 
 const char* shape_kind_name(ShapeKind kind);
 

@@ -1,6 +1,7 @@
 #pragma once
-// Hard-core exclusion for a whole configuration: the cell list, cached rotation matrices and the
-// per-species-pair cut-offs (sum of circumradii). Contact counts as overlap (spec 10 §1.4).
+// Hard-core exclusion for a whole configuration: the cell list, cached rotation matrices, the
+// per-species-pair cut-offs (sum of circumradii) and, for engines with small moves, skin lists
+// (neighbors/skin_list.hpp). Contact counts as overlap (spec 10 §1.4).
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -9,6 +10,7 @@
 
 #include "anisodyn/core/types.hpp"
 #include "anisodyn/neighbors/cell_list.hpp"
+#include "anisodyn/neighbors/skin_list.hpp"
 #include "anisodyn/system/state.hpp"
 
 namespace anisodyn {
@@ -25,6 +27,13 @@ class HardOverlap {
   /// Throws InputError if some species pair has no overlap test.
   /// expected_counts (per species) sizes the cell grids for particles still to be inserted.
   explicit HardOverlap(const State& state, const std::vector<std::size_t>& expected_counts = {});
+
+  /// Lists the partners of species s within skin half-width half_skin[s] (0: search the cell
+  /// grid at every query, the default). A pair of species is listed when both have a skin,
+  /// except sphere–sphere pairs. Pays when moves are small next to the skin; outcomes are the
+  /// same either way.
+  void use_skin_lists(std::vector<double> half_skin);
+  const SkinList& skin_lists() const { return skin_; }
 
   /// Re-reads every position and orientation (after a box change or a bulk edit).
   void rebuild(const State& state);
@@ -50,6 +59,17 @@ class HardOverlap {
   template <class F>
   bool for_each_overlap(std::int32_t i, const Vec3& r, const Mat3& rot, std::int32_t first_j, F&& on_overlap) const;
 
+  /// Calls f(j, d, r2) for the partners of species b on i's skin list with r2 ≤ rc², d formed as
+  /// the cell list forms it; stops when f returns true.
+  template <class F>
+  bool visit_listed(std::int32_t i, int b, const Vec3& r, double rc, F&& f) const;
+  void rebuild_skin_lists();
+  /// Makes i's current placement its reference and finds its listed partners.
+  void rereference(std::int32_t i);
+  /// Links i (whose reference is set) with every referenced j ≥ first_j whose grown reference
+  /// body overlaps i's.
+  void link_partners(std::int32_t i, std::int32_t first_j);
+
   const State* state_;
   double largest_cutoff_ = 0.0;
   int nspecies_ = 0;
@@ -57,6 +77,7 @@ class HardOverlap {
   std::vector<Mat3> rot_;
   std::vector<std::size_t> expected_counts_;
   CellList cells_;
+  SkinList skin_;
 };
 
 }  // namespace anisodyn

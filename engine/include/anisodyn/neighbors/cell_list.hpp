@@ -21,7 +21,7 @@
 namespace anisodyn {
 
 /// Cells of an (sx × sy × sz) stencil as index triples, ordered by distance from its centre.
-/// The reference is to a per-thread cache: a visit callback must not start another visit.
+/// The reference is into a per-thread cache that only grows, so it stays valid.
 struct StencilCell {
   std::int8_t a, b, c;
 };
