@@ -8,6 +8,10 @@ at equilibrium must report a realised balance within 5% of 1 (a sanity bound for
 the 0.5% acceptance check is the slow test validation_dmc_balance, docs/validation.md). Prints
 each manifest's wall time.
 
+When tests/golden/<manifest>.json exists, every dataset the run wrote must equal the recorded one
+bit for bit (tests/support/golden_outputs.py; skipped, saying so, on a machine whose compiler or
+instruction set differs from the recording's).
+
 argv: [1] build bin dir, [2] scratch dir, [3] source dir, [4] optional: the one manifest to run
 (name with or without .json; ctest registers one test per manifest, study_manifests.cmake),
 [5] optional: runner workers (default 2)."""
@@ -23,6 +27,9 @@ import time
 
 import h5py
 import numpy as np
+
+sys.path.insert(0, os.path.join(sys.argv[3], "tests", "support"))
+import golden_outputs  # noqa: E402
 
 bin_dir, tmp, source = sys.argv[1], sys.argv[2], sys.argv[3]
 only = sys.argv[4] if len(sys.argv) > 4 else None
@@ -135,6 +142,11 @@ for path in manifests:
                 for pattern, lo, hi, what in RULES:
                     if re.match(pattern, name) and not (lo <= value <= hi):
                         problems.append(f"{os.path.relpath(h5, campaign)}: {name} = {value:.4g} is not {what}")
+    golden = os.path.join(source, "tests", "golden", os.path.basename(path)[:-5] + ".json")
+    if not problems and os.path.exists(golden):
+        differences, note = golden_outputs.compare(tmp, golden)
+        print(f"     {note}")
+        problems += [f"not as recorded in {os.path.relpath(golden, source)}: {d}" for d in differences]
     status = "ok  " if not problems else "FAIL"
     if notes:
         print(f"     note: {len(notes)} scalar(s) NaN with a documented meaning: {sorted(set(notes))}")
