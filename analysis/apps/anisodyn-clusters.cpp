@@ -288,7 +288,7 @@ void run_dbscan(StageRun& run) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const io::ToolInfo info{
+  const tool::ToolInfo info{
       "anisodyn-clusters", "cluster analyses: nematic-like HBP clusters, dipolar chains of cubes, DBSCAN calibration of the bond threshold",
       "Configuration keys: inputs, csv, mode (nematic | dipolar | dbscan), species; nematic: axis (T W L), K1, K2, K_par, K_perp, "
       "cos_bins; dipolar: gamma, sigma, bu_max, field_direction, transition_times, transition_at_x2_maximum, "

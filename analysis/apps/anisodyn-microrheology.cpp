@@ -210,7 +210,7 @@ void run_active(StageRun& run) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const io::ToolInfo info{"anisodyn-microrheology", "passive (GSER and compliance) and active (pulled tracer) microrheology over replicas",
+  const tool::ToolInfo info{"anisodyn-microrheology", "passive (GSER and compliance) and active (pulled tracer) microrheology over replicas",
                           "Configuration keys: inputs, csv, mode (passive | active), species (the tracer). "
                           "passive: radius | tracer_diameter, kT, alpha_fit_decades, lags_per_decade, max_origins, fit {t_min, t_max}, evans_t_max. "
                           "active: beta_force | force (+ kT) | pe (+ radius | tracer_diameter), D_s, direction, bath_species, steady_distance, "

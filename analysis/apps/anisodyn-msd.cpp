@@ -59,7 +59,7 @@ void write_results(StageRun& run, const SelectedSpecies& sp, const MsdResult& r)
 }  // namespace
 
 int main(int argc, char** argv) {
-  const io::ToolInfo info{"anisodyn-msd", "mean-squared displacements, non-Gaussian parameter and diffusion coefficients over replicas",
+  const tool::ToolInfo info{"anisodyn-msd", "mean-squared displacements, non-Gaussian parameter and diffusion coefficients over replicas",
                           "Configuration keys: inputs, species, reference (axes | director | field | particle_axis), "
                           "direction, axis (T W L | auto), director_species (spheres: whose director), body_frame, lags_per_decade, max_origins, fit {t_min, t_max}, "
                           "ngp_constant, beta_smoothing_decades, window {from, to, stride}, csv. See docs/analysis.md."};

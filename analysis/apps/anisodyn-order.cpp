@@ -65,7 +65,7 @@ void write_results(StageRun& run, const OrderStageSettings& settings, const Sele
 }  // namespace
 
 int main(int argc, char** argv) {
-  const io::ToolInfo info{"anisodyn-order", "orientational order parameters over time, run averages and the phase verdict",
+  const tool::ToolInfo info{"anisodyn-order", "orientational order parameters over time, run averages and the phase verdict",
                           "Configuration keys: inputs, species, observables [U, B2, S_rod, S_cube], main_axis (T W L | auto), "
                           "rod_axis, field_direction, chain_threshold {gamma, sigma, bu_max}, average_from, window {from, to, stride}, csv. "
                           "See docs/analysis.md."};

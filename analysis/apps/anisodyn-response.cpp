@@ -76,7 +76,7 @@ void write_results(StageRun& run, const ResponseSettings& s, const SelectedSpeci
 }  // namespace
 
 int main(int argc, char** argv) {
-  const io::ToolInfo info{"anisodyn-response", "switching response times t_ON, t_OFF with outlier rejection over trajectories",
+  const tool::ToolInfo info{"anisodyn-response", "switching response times t_ON, t_OFF with outlier rejection over trajectories",
                           "Configuration keys: inputs, species, signal (B2 | U_L | U_W | U_T | S_cube), main_axis (T W L | auto), "
                           "field_direction, switch_on, switch_off, cycle, smoothing_fraction, outlier_threshold, window {from, to, stride}, csv. "
                           "See docs/analysis.md."};

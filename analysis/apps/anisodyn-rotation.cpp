@@ -48,7 +48,7 @@ void write_results(StageRun& run, const SelectedSpecies& sp, const RotationResul
 }  // namespace
 
 int main(int argc, char** argv) {
-  const io::ToolInfo info{"anisodyn-rotation", "rotational MSAD and Legendre correlations per body axis, with D_r",
+  const tool::ToolInfo info{"anisodyn-rotation", "rotational MSAD and Legendre correlations per body axis, with D_r",
                           "Configuration keys: inputs, species, axes ([\"T\", \"W\", \"L\"]), lags_per_decade, max_origins, "
                           "fit {t_min, t_max}, correlation_floor, window {from, to, stride}, csv. See docs/analysis.md."};
   return run_analysis_stage(argc, argv, info, [](StageRun& run) {

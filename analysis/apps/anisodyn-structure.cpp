@@ -51,7 +51,7 @@ void write_profile(StageRun& run, const PairStructureResult& r, const SlabProfil
 }  // namespace
 
 int main(int argc, char** argv) {
-  const io::ToolInfo info{"anisodyn-structure", "radial and directional pair correlations and slab density profiles",
+  const tool::ToolInfo info{"anisodyn-structure", "radial and directional pair correlations and slab density profiles",
                           "Configuration keys: inputs, pairs [[A, B], ...], dr, r_max, reference (field | director | none), "
                           "direction, axis (T W L | auto), director_species, cylinder_radius, slab_half_height, slab_bins, "
                           "window {from, to, stride}, csv. See docs/analysis.md."};

@@ -10,7 +10,7 @@ using namespace anisodyn;
 using namespace anisodyn::analysis;
 
 int main(int argc, char** argv) {
-  const io::ToolInfo info{"anisodyn-vanhove", "self van Hove functions (translational and angular) with Gaussian references",
+  const tool::ToolInfo info{"anisodyn-vanhove", "self van Hove functions (translational and angular) with Gaussian references",
                           "Configuration keys: inputs, species, times (required), components (tot x y z par perp), direction, "
                           "bin_width, bins, angular_axes ([\"T\", \"W\", \"L\"]), angular_bin_width, angular_dimension, "
                           "lags_per_decade, max_origins, window {from, to, stride}, csv. See docs/analysis.md."};

@@ -14,7 +14,7 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr const char* kPathObservable = "tracer_position";
 
-int axis_letter_index(io::ConfigNode& cfg, const std::string& key, const std::string& fallback) {
+int axis_letter_index(tool::ConfigNode& cfg, const std::string& key, const std::string& fallback) {
   const std::string a = cfg.choice(key, {"T", "W", "L", "x", "y", "z", "none"}, fallback);
   if (a == "T" || a == "x") return 0;
   if (a == "W" || a == "y") return 1;
@@ -86,7 +86,7 @@ double DensityMapGrid::ring_volume(std::size_t m) const {
   return std::numbers::pi * (r1 * r1 - r0 * r0) * dz;
 }
 
-ActiveMicrorheologySettings parse_active_microrheology_settings(io::ConfigNode& cfg) {
+ActiveMicrorheologySettings parse_active_microrheology_settings(tool::ConfigNode& cfg) {
   ActiveMicrorheologySettings s;
   s.species = cfg.string("species");
   const int forces = static_cast<int>(cfg.has("beta_force")) + static_cast<int>(cfg.has("force")) + static_cast<int>(cfg.has("pe"));

@@ -9,7 +9,7 @@
 #include <set>
 
 #include "anisodyn/core/error.hpp"
-#include "anisodyn/io/atomic_file.hpp"
+#include "anisodyn/tool/atomic_file.hpp"
 #include "anisodyn/io/hdf5_support.hpp"
 #include "anisodyn/version.hpp"
 
@@ -141,7 +141,7 @@ void write_scalars_csv(const std::vector<Scalar>& scalars, const std::string& pa
 
 void AnalysisOutput::write(bool csv) const {
   QuietHdf5 quiet;
-  std::vector<io::AtomicOutput> outputs;
+  std::vector<tool::AtomicOutput> outputs;
   outputs.emplace_back(path_);
   {
     Handle file(H5Fcreate(outputs.back().partial_path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);

@@ -121,7 +121,7 @@ std::size_t knee_index(const std::vector<double>& d) {
   return best;
 }
 
-DbscanCalibrationSettings parse_dbscan_settings(io::ConfigNode& cfg) {
+DbscanCalibrationSettings parse_dbscan_settings(tool::ConfigNode& cfg) {
   DbscanCalibrationSettings s;
   s.species = cfg.string("species", "");
   s.rule.gamma = cfg.positive("gamma");

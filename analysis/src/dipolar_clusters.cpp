@@ -184,7 +184,7 @@ WertheimFit fit_wertheim(const CurveSamples& samples) {
 
 // ---- settings -------------------------------------------------------------------------------------
 
-DipolarClusterSettings parse_dipolar_cluster_settings(io::ConfigNode& cfg) {
+DipolarClusterSettings parse_dipolar_cluster_settings(tool::ConfigNode& cfg) {
   DipolarClusterSettings s;
   s.species = cfg.string("species", "");
   s.rule.gamma = cfg.positive("gamma");

@@ -16,7 +16,7 @@ std::string number_text(double v) {
 
 }  // namespace
 
-FrameWindow parse_frame_window(io::ConfigNode& cfg) {
+FrameWindow parse_frame_window(tool::ConfigNode& cfg) {
   FrameWindow w;
   w.config_file = cfg.file();
   auto node = cfg.optional_object("window");
@@ -30,7 +30,7 @@ FrameWindow parse_frame_window(io::ConfigNode& cfg) {
   return w;
 }
 
-void refuse_frame_key(io::ConfigNode& cfg, const std::string& key) {
+void refuse_frame_key(tool::ConfigNode& cfg, const std::string& key) {
   if (cfg.has(key))
     cfg.fail(key, "no '" + key + "' key: choose the analysed frames by time with \"window\": {\"from\": t0, \"to\": t1, \"stride\": k}");
 }

@@ -13,7 +13,7 @@ namespace anisodyn::analysis {
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-int body_axis_index(io::ConfigNode& cfg, const std::string& key) {
+int body_axis_index(tool::ConfigNode& cfg, const std::string& key) {
   const std::string a = cfg.choice(key, {"T", "W", "L", "x", "y", "z", "auto"}, "auto");
   if (a == "T" || a == "x") return 0;
   if (a == "W" || a == "y") return 1;
@@ -22,7 +22,7 @@ int body_axis_index(io::ConfigNode& cfg, const std::string& key) {
 }
 }  // namespace
 
-MsdSettings parse_msd_settings(io::ConfigNode& cfg) {
+MsdSettings parse_msd_settings(tool::ConfigNode& cfg) {
   MsdSettings s;
   s.species = cfg.string("species", "");
   const std::string ref = cfg.choice("reference", {"axes", "director", "field", "vector", "particle_axis"}, "axes");

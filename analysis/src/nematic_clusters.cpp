@@ -45,7 +45,7 @@ void check_nematic_cluster_settings(const NematicClusterSettings& s, const std::
   if (!p.key.empty()) throw InputError(config_file, p.key, p.problem + (p.value.empty() ? "" : ", got " + p.value));
 }
 
-NematicClusterSettings parse_nematic_cluster_settings(io::ConfigNode& cfg) {
+NematicClusterSettings parse_nematic_cluster_settings(tool::ConfigNode& cfg) {
   NematicClusterSettings s;
   s.species = cfg.string("species", "");
   const std::string a = cfg.choice("axis", {"T", "W", "L"});

@@ -42,7 +42,7 @@ Vec3 any_perpendicular(const Vec3& n) {
 }
 }  // namespace
 
-int parse_body_axis(io::ConfigNode& cfg, const std::string& key, const std::string& fallback, bool allow_auto) {
+int parse_body_axis(tool::ConfigNode& cfg, const std::string& key, const std::string& fallback, bool allow_auto) {
   std::vector<std::string> allowed{"T", "W", "L", "x", "y", "z"};
   if (allow_auto) allowed.emplace_back("auto");
   const std::string a = cfg.choice(key, allowed, fallback);
@@ -265,7 +265,7 @@ std::vector<SelectedSpecies> select_oriented_species(const std::string& first_in
 
 // ---- the order stage -------------------------------------------------------------------------------
 
-OrderStageSettings parse_order_settings(io::ConfigNode& cfg) {
+OrderStageSettings parse_order_settings(tool::ConfigNode& cfg) {
   OrderStageSettings s;
   s.species = cfg.string("species", "");
   if (cfg.has("observables")) {

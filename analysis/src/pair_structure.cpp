@@ -53,7 +53,7 @@ void count_pairs(const std::vector<Vec3>& a, const std::vector<Vec3>* b, const P
 }
 }  // namespace
 
-PairStructureSettings parse_structure_settings(io::ConfigNode& cfg) {
+PairStructureSettings parse_structure_settings(tool::ConfigNode& cfg) {
   PairStructureSettings s;
   if (cfg.has("pairs")) {
     const nlohmann::json& p = cfg.value("pairs");

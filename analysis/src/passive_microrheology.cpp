@@ -112,7 +112,7 @@ Moduli evans_moduli(const std::vector<double>& t, const std::vector<double>& msd
   return m;
 }
 
-PassiveMicrorheologySettings parse_passive_microrheology_settings(io::ConfigNode& cfg) {
+PassiveMicrorheologySettings parse_passive_microrheology_settings(tool::ConfigNode& cfg) {
   PassiveMicrorheologySettings s;
   s.species = cfg.string("species");
   if (cfg.has("radius") && cfg.has("tracer_diameter")) cfg.fail("tracer_diameter", "expected either 'radius' or 'tracer_diameter', not both");

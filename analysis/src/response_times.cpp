@@ -172,7 +172,7 @@ OutlierRejection reject_outliers(const std::vector<double>& t, double threshold)
 
 // ---- the response stage -------------------------------------------------------------------------
 
-ResponseSettings parse_response_settings(io::ConfigNode& cfg) {
+ResponseSettings parse_response_settings(tool::ConfigNode& cfg) {
   ResponseSettings s;
   s.species = cfg.string("species", "");
   s.signal = cfg.choice("signal", {"B2", "U_L", "U_W", "U_T", "S_cube"}, "B2");

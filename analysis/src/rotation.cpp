@@ -11,7 +11,7 @@ namespace anisodyn::analysis {
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-int axis_from_name(io::ConfigNode& cfg, const std::string& name, const std::string& key) {
+int axis_from_name(tool::ConfigNode& cfg, const std::string& name, const std::string& key) {
   if (name == "T" || name == "x") return 0;
   if (name == "W" || name == "y") return 1;
   if (name == "L" || name == "z") return 2;
@@ -19,7 +19,7 @@ int axis_from_name(io::ConfigNode& cfg, const std::string& name, const std::stri
 }
 }  // namespace
 
-RotationSettings parse_rotation_settings(io::ConfigNode& cfg) {
+RotationSettings parse_rotation_settings(tool::ConfigNode& cfg) {
   RotationSettings s;
   s.species = cfg.string("species", "");
   if (cfg.has("axes")) {

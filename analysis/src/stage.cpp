@@ -3,8 +3,8 @@
 #include <cstdio>
 
 #include "anisodyn/core/error.hpp"
-#include "anisodyn/io/atomic_file.hpp"
-#include "anisodyn/io/provenance.hpp"
+#include "anisodyn/tool/atomic_file.hpp"
+#include "anisodyn/tool/provenance.hpp"
 
 namespace anisodyn::analysis {
 
@@ -35,10 +35,10 @@ void StageRun::fail(const std::string& key, const std::string& problem) const {
   throw InputError(opt.config_name(), key, problem);
 }
 
-int run_analysis_stage(int argc, char** argv, const io::ToolInfo& info, const std::function<void(StageRun&)>& body) {
-  return io::run_tool(argc, argv, info, [&](io::CommonOptions& opt) {
+int run_analysis_stage(int argc, char** argv, const tool::ToolInfo& info, const std::function<void(StageRun&)>& body) {
+  return tool::run_tool(argc, argv, info, [&](tool::CommonOptions& opt) {
     if (opt.output.empty()) throw InputError("--output", "", "expected an output file (.h5); CSV files are written beside it");
-    io::ConfigNode cfg(opt.config, opt.config_name());
+    tool::ConfigNode cfg(opt.config, opt.config_name());
     std::vector<std::string> patterns = opt.inputs;
     if (cfg.has("inputs"))
       for (auto& p : cfg.strings("inputs")) patterns.push_back(p);
@@ -47,11 +47,11 @@ int run_analysis_stage(int argc, char** argv, const io::ToolInfo& info, const st
     const bool csv = cfg.boolean("csv", true);
     const FrameWindow window = parse_frame_window(cfg);
     const std::vector<std::string> inputs = expand_inputs(patterns, opt.inputs.empty() ? opt.config_name() : "--input");
-    io::check_output_writable(opt.output);
+    tool::check_output_writable(opt.output);
     AnalysisOutput out(opt.output, opt.config, nlohmann::json::object());
     StageRun run{opt, cfg, inputs, out, window};
     body(run);
-    out.set_provenance(io::make_provenance(info.name, opt.argv, inputs));
+    out.set_provenance(tool::make_provenance(info.name, opt.argv, inputs));
     out.write(csv);
     if (!opt.quiet) std::fprintf(stderr, "%s: wrote %s\n", info.name.c_str(), opt.output.c_str());
   });

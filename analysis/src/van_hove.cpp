@@ -38,7 +38,7 @@ double squared_component(const std::string& c, const Vec3& d, const Vec3& e) {
 }
 }  // namespace
 
-VanHoveSettings parse_van_hove_settings(io::ConfigNode& cfg) {
+VanHoveSettings parse_van_hove_settings(tool::ConfigNode& cfg) {
   VanHoveSettings s;
   s.species = cfg.string("species", "");
   s.times = cfg.numbers("times");

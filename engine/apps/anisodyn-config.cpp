@@ -4,23 +4,23 @@
 
 #include "anisodyn/config/config_tool.hpp"
 #include "anisodyn/core/error.hpp"
-#include "anisodyn/io/atomic_file.hpp"
-#include "anisodyn/io/command_line.hpp"
+#include "anisodyn/tool/atomic_file.hpp"
+#include "anisodyn/tool/command_line.hpp"
 #include "anisodyn/io/h5md.hpp"
-#include "anisodyn/io/provenance.hpp"
+#include "anisodyn/tool/provenance.hpp"
 
 using namespace anisodyn;
 
 int main(int argc, char** argv) {
-  const io::ToolInfo info{"anisodyn-config", "build an initial configuration and write it as H5MD",
+  const tool::ToolInfo info{"anisodyn-config", "build an initial configuration and write it as H5MD",
                           "Configuration keys: seed, species[], composition[] {species, count, orientation {mode, axis, "
                           "director, random_azimuth}}, box {edges | packing_fraction, aspect}, placement (lattice|random), "
                           "max_attempts_per_particle. See docs/config.md."};
-  return io::run_tool(argc, argv, info, [&](io::CommonOptions& opt) {
+  return tool::run_tool(argc, argv, info, [&](tool::CommonOptions& opt) {
     if (opt.output.empty()) throw InputError("command line", "--output", "an output file (state.h5)");
     if (opt.inputs.size() > 1) throw InputError("command line", "--input", "at most one input state to insert into");
-    io::check_output_writable(opt.output);
-    io::ConfigNode cfg(opt.config, opt.config_name());
+    tool::check_output_writable(opt.output);
+    tool::ConfigNode cfg(opt.config, opt.config_name());
     const std::uint64_t seed = opt.seed.value_or(static_cast<std::uint64_t>(cfg.non_negative_integer("seed", 1)));
     std::optional<State> existing;
     if (!opt.inputs.empty()) existing = io::H5mdReader(opt.inputs[0]).read_frame(-1);
@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
     nlohmann::json parameters = opt.config;
     parameters["seed"] = seed;
     if (replica) parameters["replica"] = replica;
-    nlohmann::json provenance = io::make_provenance(info.name, opt.argv, opt.inputs);
+    nlohmann::json provenance = tool::make_provenance(info.name, opt.argv, opt.inputs);
     provenance["diffusion_sources"] = diffusion_origins;  // which species file (and entry) each D came from
     io::H5mdWriter writer(opt.output, {"anisodyn", "", "anisodyn user", parameters, provenance, state.species});
     writer.append_frame(state);

@@ -8,25 +8,25 @@
 #include "anisodyn/core/error.hpp"
 #include "anisodyn/core/signals.hpp"
 #include "anisodyn/dmc/dmc_runner.hpp"
-#include "anisodyn/io/atomic_file.hpp"
-#include "anisodyn/io/command_line.hpp"
+#include "anisodyn/tool/atomic_file.hpp"
+#include "anisodyn/tool/command_line.hpp"
 #include "anisodyn/io/h5md.hpp"
-#include "anisodyn/io/provenance.hpp"
+#include "anisodyn/tool/provenance.hpp"
 
 using namespace anisodyn;
 
 int main(int argc, char** argv) {
-  const io::ToolInfo info{"anisodyn-dmc", "Dynamic Monte Carlo of hard particles: Brownian dynamics by Metropolis moves",
+  const tool::ToolInfo info{"anisodyn-dmc", "Dynamic Monte Carlo of hard particles: Brownian dynamics by Metropolis moves",
                           "Configuration keys: seed, time_step {species: dt}, balance {mode, reference, clock, preliminary_cycles, "
                           "max_iterations, tolerance, smoothing_cycles}, cycles | time, moves {rotation, sequential_order, "
                           "translation_frame}, field {direction, initially, orientational {strength, axis}, dipoles {gamma, species, "
                           "accuracy, minimum_image_only}}, schedule {segments[], repeat | switches[]}, tracer {species, pe, axis, a0, "
                           "record_every}, frames {every_cycles, every_time, log_first_time, log_per_decade, after_switch}, "
                           "observe_every, species {name: {D_trans, D_rot}}. See docs/dmc.md."};
-  return io::run_tool(argc, argv, info, [&](io::CommonOptions& opt) {
-    const std::string& input = io::require_one_input_and_output(opt);
+  return tool::run_tool(argc, argv, info, [&](tool::CommonOptions& opt) {
+    const std::string& input = tool::require_one_input_and_output(opt);
 
-    io::ConfigNode cfg(opt.config, opt.config_name());
+    tool::ConfigNode cfg(opt.config, opt.config_name());
     DmcProtocol protocol = parse_dmc_protocol(cfg);
     cfg.finish();
     if (opt.seed) protocol.seed = *opt.seed;
@@ -62,7 +62,7 @@ int main(int argc, char** argv) {
       if (std::string(e.what()).rfind(opt.config_name(), 0) == 0) throw;
       throw InputError(input, "/particles/all", e.what());
     }
-    nlohmann::json provenance = io::make_provenance(info.name, opt.argv, opt.inputs);
+    nlohmann::json provenance = tool::make_provenance(info.name, opt.argv, opt.inputs);
     if (!protocol.diffusion_origins.empty()) provenance["diffusion_sources"] = protocol.diffusion_origins;
     const io::H5mdHeader header{"anisodyn", "", "anisodyn user", parameters, provenance, state.species};
     std::optional<io::H5mdWriter> out;

@@ -14,9 +14,9 @@
 #include "anisodyn/core/error.hpp"
 #include "anisodyn/core/quaternion.hpp"
 #include "anisodyn/core/rng.hpp"
-#include "anisodyn/io/atomic_file.hpp"
+#include "anisodyn/tool/atomic_file.hpp"
 #include "anisodyn/io/h5md.hpp"
-#include "anisodyn/io/provenance.hpp"
+#include "anisodyn/tool/provenance.hpp"
 
 using namespace anisodyn;
 
@@ -47,7 +47,7 @@ int run(int argc, char** argv) {
     }
   }
   if (output.empty()) throw InputError("", "", "missing OUTPUT path (see --help)");
-  io::check_output_writable(output);
+  tool::check_output_writable(output);
 
   State s;
   Species board;
@@ -71,7 +71,7 @@ int run(int argc, char** argv) {
 
   io::H5mdHeader header;
   header.parameters = {{"example", true}, {"particles", n}, {"frames", frames}, {"seed", seed}};
-  header.provenance = io::make_provenance("anisodyn-h5md-example", io::argv_vector(argc, argv), {});
+  header.provenance = tool::make_provenance("anisodyn-h5md-example", tool::argv_vector(argc, argv), {});
   header.species = s.species;
   io::H5mdWriter writer(output, header);
   writer.set_observable_attribute("packing_fraction", "units", "1");

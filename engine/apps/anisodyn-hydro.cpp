@@ -7,9 +7,9 @@
 #include "anisodyn/core/error.hpp"
 #include "anisodyn/hydro/diffusion_tensor.hpp"
 #include "anisodyn/hydro/hydro_config.hpp"
-#include "anisodyn/io/atomic_file.hpp"
-#include "anisodyn/io/command_line.hpp"
-#include "anisodyn/io/provenance.hpp"
+#include "anisodyn/tool/atomic_file.hpp"
+#include "anisodyn/tool/command_line.hpp"
+#include "anisodyn/tool/provenance.hpp"
 #include "anisodyn/io/species_file.hpp"
 
 #ifdef _OPENMP
@@ -91,18 +91,18 @@ void print_summary(const std::string& name, const DiffusionTensorResult& r) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const io::ToolInfo info{"anisodyn-hydro", "infinite-dilution diffusion tensors of rigid particles from shell models",
+  const tool::ToolInfo info{"anisodyn-hydro", "infinite-dilution diffusion tensors of rigid particles from shell models",
                           "Configuration keys: species[] {name, shape, shells | bead_radii, construction, extrapolation}, shells "
                           "{count, max_beads, size_ratio}, bead_radii, symmetry, construction (surface_grid | cell_centres), "
                           "extrapolation (auto | linear | quadratic; auto, the default, picks per species the fit with the smaller "
                           "error estimate). The output is a species file: JSON, or HDF5 when it ends "
                           "in .h5. Units: lengths in the shape's unit ℓ, D_trans in ℓ²/τ, D_rot in rad²/τ, with "
                           "τ = ηℓ³/k_BT. See docs/hydro.md."};
-  return io::run_tool(argc, argv, info, [&](io::CommonOptions& opt) {
+  return tool::run_tool(argc, argv, info, [&](tool::CommonOptions& opt) {
     if (!opt.inputs.empty()) throw InputError("--input", "", "anisodyn-hydro takes no input file (shapes come from --config)");
     if (opt.output.empty()) throw InputError("--output", "", "expected an output species file (.json or .h5)");
-    io::check_output_writable(opt.output);
-    io::ConfigNode cfg(opt.config, opt.config_name());
+    tool::check_output_writable(opt.output);
+    tool::ConfigNode cfg(opt.config, opt.config_name());
     const HydroConfig config = parse_hydro_config(cfg);
     cfg.finish();
 #ifdef _OPENMP
@@ -131,7 +131,7 @@ int main(int argc, char** argv) {
                    {"D_rot", "rad²/τ about the body axes x, y, z"},
                    {"tau", "η length³ / k_BT"}}},
         {"parameters", opt.config},
-        {"provenance", io::make_provenance(info.name, opt.argv, {})},
+        {"provenance", tool::make_provenance(info.name, opt.argv, {})},
         {"species", species}};
     io::write_species_file(opt.output, document);
   });

@@ -9,10 +9,10 @@
 
 #include "anisodyn/core/signals.hpp"
 #include "anisodyn/core/error.hpp"
-#include "anisodyn/io/atomic_file.hpp"
-#include "anisodyn/io/command_line.hpp"
+#include "anisodyn/tool/atomic_file.hpp"
+#include "anisodyn/tool/command_line.hpp"
 #include "anisodyn/io/h5md.hpp"
-#include "anisodyn/io/provenance.hpp"
+#include "anisodyn/tool/provenance.hpp"
 #include "anisodyn/mc/protocol_config.hpp"
 
 using namespace anisodyn;
@@ -48,13 +48,13 @@ std::map<std::string, Series> read_observables(const io::H5mdReader& r) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const io::ToolInfo info{"anisodyn-mc", "Metropolis MC equilibration and compression of hard particles",
+  const tool::ToolInfo info{"anisodyn-mc", "Metropolis MC equilibration and compression of hard particles",
                           "Configuration keys: seed, target_acceptance, tune_every, sample_every, frame_every, field "
                           "{strength, axis, direction}, phases[] (compress | npt | nvt). See docs/mc.md."};
-  return io::run_tool(argc, argv, info, [&](io::CommonOptions& opt) {
-    const std::string& input = io::require_one_input_and_output(opt);
+  return tool::run_tool(argc, argv, info, [&](tool::CommonOptions& opt) {
+    const std::string& input = tool::require_one_input_and_output(opt);
 
-    io::ConfigNode cfg(opt.config, opt.config_name());
+    tool::ConfigNode cfg(opt.config, opt.config_name());
     McProtocol protocol = parse_mc_protocol(cfg);
     if (opt.seed) protocol.seed = *opt.seed;
     if (opt.replica) protocol.replica = *opt.replica;
@@ -99,7 +99,7 @@ int main(int argc, char** argv) {
       if (!opt.quiet) std::fprintf(stderr, "anisodyn-mc: resuming from %s at cycle %lld\n", checkpoint_path.c_str(),
                                    static_cast<long long>(state.step));
     }
-    const io::H5mdHeader header{"anisodyn", "", "anisodyn user", parameters, io::make_provenance(info.name, opt.argv, opt.inputs), state.species};
+    const io::H5mdHeader header{"anisodyn", "", "anisodyn user", parameters, tool::make_provenance(info.name, opt.argv, opt.inputs), state.species};
     auto checkpoint = [&] {
       io::H5mdWriter w(checkpoint_path, header);
       write_trajectory(w, *runner);

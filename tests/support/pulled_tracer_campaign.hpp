@@ -21,7 +21,7 @@
 #include "anisodyn/dmc/dmc_protocol.hpp"
 #include "anisodyn/dmc/dmc_runner.hpp"
 #include "anisodyn/io/h5md.hpp"
-#include "anisodyn/io/json_config.hpp"
+#include "anisodyn/tool/json_config.hpp"
 #include "anisodyn/core/rng.hpp"
 #include "anisodyn/mc/mc_engine.hpp"
 
@@ -106,7 +106,7 @@ inline nlohmann::json tracer_config(const TracerRun& r) {
 inline nlohmann::json run_tracer_replica(const State& start, const TracerRun& r, std::uint64_t replica, const std::string& path) {
   State state = start;
   nlohmann::json config = tracer_config(r);
-  io::ConfigNode cfg(config, "test.json");
+  tool::ConfigNode cfg(config, "test.json");
   DmcProtocol protocol = parse_dmc_protocol(cfg);
   cfg.finish();
   protocol.replica = replica;

@@ -392,7 +392,7 @@ TEST_F(MicrorheologyTest, ZeroForceIsAPassiveReferenceWithNoFrictionRatio) {
     pulled_tracer(201, 0.05, D, 0.0, 300 + r).write(paths.back());
   }
   nlohmann::json j = {{"species", "tracer"}, {"pe", 0.0}};
-  io::ConfigNode cfg(j, "cfg.json");
+  tool::ConfigNode cfg(j, "cfg.json");
   ActiveMicrorheologySettings s = parse_active_microrheology_settings(cfg);
   cfg.finish();
   nlohmann::json details;
@@ -408,7 +408,7 @@ TEST_F(MicrorheologyTest, ZeroForceIsAPassiveReferenceWithNoFrictionRatio) {
   EXPECT_TRUE(std::isnan(r.gamma_ratio.value));
   // steady_distance cannot mean anything without a drift
   nlohmann::json bad = {{"species", "tracer"}, {"pe", 0.0}, {"steady_distance", 1.0}};
-  io::ConfigNode bad_cfg(bad, "cfg.json");
+  tool::ConfigNode bad_cfg(bad, "cfg.json");
   ActiveMicrorheologySettings b = parse_active_microrheology_settings(bad_cfg);
   try {
     resolve_active_defaults(b, pulled_tracer(2, 1.0, D, 0.0, 1).table, nlohmann::json::object(), "cfg.json", details);
@@ -671,7 +671,7 @@ TEST_F(MicrorheologyTest, MissingTracerSpeciesIsAnInputError) {
 TEST(MicrorheologySettings, KeysAreParsedAndCheckedWithTheirPaths) {
   nlohmann::json j = {{"species", "tracer"}, {"force", 4.0}, {"kT", 2.0}, {"direction", {0, 0, -1}}, {"bin_width", 0.5},
                       {"rho_bin", 0.2}, {"steady_from", 3.0}, {"order_axis", "W"}, {"position_source", "frames"}};
-  io::ConfigNode cfg(j, "cfg.json");
+  tool::ConfigNode cfg(j, "cfg.json");
   const ActiveMicrorheologySettings s = parse_active_microrheology_settings(cfg);
   cfg.finish();
   EXPECT_DOUBLE_EQ(s.beta_force, 2.0);
@@ -683,7 +683,7 @@ TEST(MicrorheologySettings, KeysAreParsedAndCheckedWithTheirPaths) {
   ASSERT_TRUE(s.steady_from.has_value());
 
   nlohmann::json bad = {{"species", "tracer"}, {"direction", {1, 1, 0}}};
-  io::ConfigNode bad_cfg(bad, "cfg.json");
+  tool::ConfigNode bad_cfg(bad, "cfg.json");
   try {
     parse_active_microrheology_settings(bad_cfg);
     ADD_FAILURE() << "expected InputError";
@@ -691,11 +691,11 @@ TEST(MicrorheologySettings, KeysAreParsedAndCheckedWithTheirPaths) {
     EXPECT_EQ(e.json_path(), "direction");
   }
   nlohmann::json both = {{"species", "tracer"}, {"beta_force", 1.0}, {"pe", 1.0}};
-  io::ConfigNode both_cfg(both, "cfg.json");
+  tool::ConfigNode both_cfg(both, "cfg.json");
   EXPECT_THROW(parse_active_microrheology_settings(both_cfg), InputError);
   // steady_from decides where the steady part starts: steady_distance beside it has no effect
   nlohmann::json window_twice = {{"species", "tracer"}, {"steady_from", 1.0}, {"steady_distance", 1.0}};
-  io::ConfigNode twice_cfg(window_twice, "cfg.json");
+  tool::ConfigNode twice_cfg(window_twice, "cfg.json");
   try {
     parse_active_microrheology_settings(twice_cfg);
     ADD_FAILURE() << "expected InputError";
@@ -704,7 +704,7 @@ TEST(MicrorheologySettings, KeysAreParsedAndCheckedWithTheirPaths) {
   }
 
   nlohmann::json p = {{"species", "probe"}, {"tracer_diameter", 3.0}, {"fit", {{"t_min", 10.0}, {"t_max", 100.0}}}};
-  io::ConfigNode pcfg(p, "cfg.json");
+  tool::ConfigNode pcfg(p, "cfg.json");
   const PassiveMicrorheologySettings ps = parse_passive_microrheology_settings(pcfg);
   pcfg.finish();
   EXPECT_DOUBLE_EQ(ps.radius, 1.5);

@@ -426,6 +426,6 @@ TEST_F(MsdTest, DirectorSpeciesIsRequiredAmongSeveralAnisotropicSpeciesAndRefuse
   EXPECT_EQ(input_error([&] { run({none}, s, {}, 0); }).json_path(), "reference");
   // the key without the director reference has no effect: refused
   nlohmann::json j = {{"reference", "axes"}, {"director_species", "board"}};
-  io::ConfigNode cfg(j, "msd.json");
+  tool::ConfigNode cfg(j, "msd.json");
   EXPECT_EQ(input_error([&] { parse_msd_settings(cfg); }).json_path(), "director_species");
 }

@@ -292,11 +292,11 @@ TEST(OrderStage, ChainSplitFromPositions) {
 
 TEST(OrderStage, BadInputsAreInputErrors) {
   nlohmann::json j = {{"observables", {"U", "Q6"}}};
-  io::ConfigNode cfg(j, "order.json");
+  tool::ConfigNode cfg(j, "order.json");
   const InputError e = input_error([&] { parse_order_settings(cfg); });
   EXPECT_NE(std::string(e.what()).find("observables"), std::string::npos);
   nlohmann::json j2 = {{"chain_threshold", {{"gamma", 13}, {"bu_max", 1.0}}}};
-  io::ConfigNode cfg2(j2, "order.json");
+  tool::ConfigNode cfg2(j2, "order.json");
   input_error([&] { parse_order_settings(cfg2); });
   OrderStageSettings s;
   s.average_from = 100.0;  // after the last frame

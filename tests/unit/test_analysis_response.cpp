@@ -251,10 +251,10 @@ TEST(ResponseStage, ConfigSwitchInstantsAndBadInputs) {
   EXPECT_EQ(input_error([&] { c.accumulate(step_trajectory(s, 50, false), -1); }).json_path(), "switch_on");
   // configuration errors
   nlohmann::json j = {{"switch_off", 3.0}};
-  io::ConfigNode cfg(j, "response.json");
+  tool::ConfigNode cfg(j, "response.json");
   EXPECT_EQ(input_error([&] { parse_response_settings(cfg); }).json_path(), "switch_off");
   nlohmann::json j2 = {{"signal", "Q4"}};
-  io::ConfigNode cfg2(j2, "response.json");
+  tool::ConfigNode cfg2(j2, "response.json");
   EXPECT_EQ(input_error([&] { parse_response_settings(cfg2); }).json_path(), "signal");
 }
 

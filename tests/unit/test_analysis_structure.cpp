@@ -207,7 +207,7 @@ TEST_F(PairStructureFileTest, TimeWindowWithStrideAndSingleReplicaBlocks) {
   EXPECT_TRUE(r.blocks);
   // the old frame-index key is refused with a pointer to the window
   nlohmann::json j = {{"frames", {{"first", 2}}}};
-  io::ConfigNode cfg(j, "structure.json");
+  tool::ConfigNode cfg(j, "structure.json");
   EXPECT_EQ(input_error([&] { parse_structure_settings(cfg); }).json_path(), "frames");
 }
 
@@ -246,9 +246,9 @@ TEST(PairStructure, BadParametersAreInputErrors) {
   const Trajectory two = make_trajectory(uniform_gas(2, 20, box, rng), box, std::vector<int>(20, 1), kTwo);
   EXPECT_EQ(input_error([&] { c.accumulate(two); }).json_path(), "director_species");
   nlohmann::json j = {{"pairs", {"A", "B"}}};
-  io::ConfigNode cfg(j, "structure.json");
+  tool::ConfigNode cfg(j, "structure.json");
   EXPECT_EQ(input_error([&] { parse_structure_settings(cfg); }).json_path(), "pairs");
   nlohmann::json j2 = {{"frames", {{"first", 5}, {"last", 2}}}};
-  io::ConfigNode cfg2(j2, "structure.json");
+  tool::ConfigNode cfg2(j2, "structure.json");
   input_error([&] { parse_structure_settings(cfg2); });
 }

@@ -183,7 +183,7 @@ TEST_F(WindowTest, AWindowWithTooFewFramesNamesTheWindowAndTheFile) {
 
 TEST(FrameWindowConfig, ParsesAndRefusesBadWindows) {
   auto parse = [](const nlohmann::json& j) {
-    io::ConfigNode cfg(j, "stage.json");
+    tool::ConfigNode cfg(j, "stage.json");
     FrameWindow w = parse_frame_window(cfg);
     cfg.finish();
     return w;
@@ -200,7 +200,7 @@ TEST(FrameWindowConfig, ParsesAndRefusesBadWindows) {
   const InputError unknown = input_error([&] { parse({{"window", {{"form", 1}}}}); });
   EXPECT_NE(std::string(unknown.what()).find("form"), std::string::npos) << unknown.what();
   EXPECT_EQ(unknown.file(), "stage.json");
-  io::ConfigNode old({{"frames", {{"first", 2}}}}, "stage.json");
+  tool::ConfigNode old({{"frames", {{"first", 2}}}}, "stage.json");
   const InputError refused = input_error([&] { refuse_frame_key(old, "frames"); });
   EXPECT_EQ(refused.json_path(), "frames");
   EXPECT_NE(std::string(refused.what()).find("window"), std::string::npos);

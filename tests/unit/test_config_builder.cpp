@@ -101,7 +101,7 @@ TEST(ConfigTool, InsertionKeepsTheBoxAndRejectsAConflictingSpecies) {
   existing.particles.add(0, Vec3(5, 5, 5), Quat::Identity(), 0);
   nlohmann::json ok = {{"species", {{{"name", "tracer"}, {"shape", {{"type", "sphere"}, {"diameter", 0.2}}}}}},
                        {"composition", {{{"species", "tracer"}, {"count", 10}}}}};
-  io::ConfigNode cfg(ok, "insert.json");
+  tool::ConfigNode cfg(ok, "insert.json");
   const State s = build_configuration(cfg, existing, 7);
   EXPECT_EQ(s.particles.size(), 11u);
   EXPECT_EQ(s.box.edges(), existing.box.edges());
@@ -110,6 +110,6 @@ TEST(ConfigTool, InsertionKeepsTheBoxAndRejectsAConflictingSpecies) {
   nlohmann::json conflicting = ok;
   conflicting["species"][0]["name"] = "hs";  // same name, different diameter
   conflicting["composition"][0]["species"] = "hs";
-  io::ConfigNode bad(conflicting, "insert.json");
+  tool::ConfigNode bad(conflicting, "insert.json");
   EXPECT_THROW(build_configuration(bad, existing, 7), InputError);
 }

@@ -26,7 +26,7 @@ std::set<std::int64_t> log_cycles(double per_decade, std::int64_t limit) {
 
 DmcProtocol parse(const nlohmann::json& frames) {
   nlohmann::json j = {{"time_step", {{"board", 0.01}}}, {"cycles", 1000}, {"frames", frames}};
-  io::ConfigNode cfg(j, "dmc.json");
+  tool::ConfigNode cfg(j, "dmc.json");
   DmcProtocol p = parse_dmc_protocol(cfg);
   cfg.finish();
   return p;

@@ -37,7 +37,7 @@ TEST_F(DmcRunnerTracer, AccumulatorsCountFromProductionStartAndTheBalanceObserva
   nlohmann::json config = tracer_config(r);
   config["observe_every"] = 1;
   State state = start;
-  io::ConfigNode cfg(config, "test.json");
+  tool::ConfigNode cfg(config, "test.json");
   DmcProtocol protocol = parse_dmc_protocol(cfg);
   cfg.finish();
   DmcRunner runner(state, protocol, "test.json", true);

@@ -25,9 +25,9 @@
 #include "anisodyn/hydro/rigid_body_resistance.hpp"
 #include "anisodyn/hydro/rpy.hpp"
 #include "anisodyn/hydro/shell_surface.hpp"
-#include "anisodyn/io/json_config.hpp"
+#include "anisodyn/tool/json_config.hpp"
 #include "anisodyn/io/species_file.hpp"
-#include "anisodyn/system/species_config.hpp"
+#include "anisodyn/io/species_config.hpp"
 #include "hydro_theory.hpp"
 #include "scratch_dir.hpp"
 
@@ -311,14 +311,14 @@ TEST(HydroConfig, ExtrapolationKeyAtTopLevelAndPerSpecies) {
   const nlohmann::json radii{0.1, 0.08, 0.06};
   {
     nlohmann::json j{{"species", {{{"name", "a"}, {"shape", sphere}, {"bead_radii", radii}}}}};
-    io::ConfigNode cfg(j, "h.json");
+    tool::ConfigNode cfg(j, "h.json");
     EXPECT_EQ(parse_hydro_config(cfg).species[0].extrapolation, kDefaultExtrapolation);
   }
   {
     nlohmann::json j{{"extrapolation", "quadratic"},
                      {"species", {{{"name", "a"}, {"shape", sphere}, {"bead_radii", radii}},
                                   {{"name", "b"}, {"shape", sphere}, {"bead_radii", radii}, {"extrapolation", "linear"}}}}};
-    io::ConfigNode cfg(j, "h.json");
+    tool::ConfigNode cfg(j, "h.json");
     const HydroConfig c = parse_hydro_config(cfg);
     EXPECT_EQ(c.species[0].extrapolation, ExtrapolationRule::Quadratic);
     EXPECT_EQ(c.species[1].extrapolation, ExtrapolationRule::Linear);
@@ -327,18 +327,18 @@ TEST(HydroConfig, ExtrapolationKeyAtTopLevelAndPerSpecies) {
     nlohmann::json j{{"extrapolation", "linear"},
                      {"species", {{{"name", "a"}, {"shape", sphere}, {"bead_radii", radii}, {"extrapolation", "auto"}},
                                   {{"name", "b"}, {"shape", sphere}, {"bead_radii", radii}}}}};
-    io::ConfigNode cfg(j, "h.json");
+    tool::ConfigNode cfg(j, "h.json");
     const HydroConfig c = parse_hydro_config(cfg);
     EXPECT_EQ(c.species[0].extrapolation, ExtrapolationRule::Auto);
     EXPECT_EQ(c.species[1].extrapolation, ExtrapolationRule::Linear);
   }
   nlohmann::json bad{{"extrapolation", "cubic"}, {"species", {{{"name", "a"}, {"shape", sphere}, {"bead_radii", radii}}}}};
-  io::ConfigNode cfg(bad, "h.json");
+  tool::ConfigNode cfg(bad, "h.json");
   EXPECT_THROW(parse_hydro_config(cfg), InputError);
   // A top-level default that every species overrides has no effect: refused.
   nlohmann::json unused{{"extrapolation", "quadratic"},
                         {"species", {{{"name", "a"}, {"shape", sphere}, {"bead_radii", radii}, {"extrapolation", "linear"}}}}};
-  io::ConfigNode cfg2(unused, "h.json");
+  tool::ConfigNode cfg2(unused, "h.json");
   EXPECT_THROW(parse_hydro_config(cfg2), InputError);
 }
 
@@ -371,18 +371,18 @@ TEST_F(SpeciesFile, RoundTripsThroughJsonAndHdf5) {
 TEST_F(SpeciesFile, FeedsASpeciesDefinitionAndChecksItsShape) {
   io::write_species_file(file("s.h5"), document());
   const nlohmann::json good{{"name", "board"}, {"diffusion_from", {{"file", file("s.h5")}, {"species", "board_W1"}}}};
-  const Species s = parse_species(io::ConfigNode(good, "cfg.json"));
+  const Species s = parse_species(tool::ConfigNode(good, "cfg.json"));
   EXPECT_EQ(s.shape.kind, ShapeKind::Cuboid);
   EXPECT_DOUBLE_EQ(s.shape.edges.z(), 12.0);
   EXPECT_DOUBLE_EQ(s.D_rot.z(), 0.02);
 
   nlohmann::json wrong_shape = good;
   wrong_shape["shape"] = {{"type", "cuboid"}, {"edges", {1, 8, 12}}};
-  EXPECT_THROW(parse_species(io::ConfigNode(wrong_shape, "cfg.json")), InputError);
+  EXPECT_THROW(parse_species(tool::ConfigNode(wrong_shape, "cfg.json")), InputError);
   nlohmann::json missing = good;
   missing["diffusion_from"]["species"] = "board_W9";
-  EXPECT_THROW(parse_species(io::ConfigNode(missing, "cfg.json")), InputError);
+  EXPECT_THROW(parse_species(tool::ConfigNode(missing, "cfg.json")), InputError);
   nlohmann::json both = good;
   both["D_trans"] = {1, 1, 1};
-  EXPECT_THROW(parse_species(io::ConfigNode(both, "cfg.json")), InputError);
+  EXPECT_THROW(parse_species(tool::ConfigNode(both, "cfg.json")), InputError);
 }

@@ -14,7 +14,7 @@
 #include <string>
 
 #include "anisodyn/core/error.hpp"
-#include "anisodyn/io/atomic_file.hpp"
+#include "anisodyn/tool/atomic_file.hpp"
 #include "anisodyn/io/h5md.hpp"
 
 using namespace anisodyn;
@@ -49,7 +49,7 @@ State small_state() {
 TEST_F(Atomic, NothingAtFinalPathBeforeCommit) {
   const std::string out = file("result.csv");
   {
-    io::AtomicOutput a(out);
+    tool::AtomicOutput a(out);
     EXPECT_EQ(a.partial_path(), out + ".partial");
     EXPECT_EQ(entries(), 0u);  // the constructor creates nothing
     std::ofstream(a.partial_path()) << "x,y\n1,2\n";
@@ -68,7 +68,7 @@ TEST_F(Atomic, NothingAtFinalPathBeforeCommit) {
 TEST_F(Atomic, PartialRemovedWithoutCommit) {
   const std::string out = file("result.csv");
   {
-    io::AtomicOutput a(out);
+    tool::AtomicOutput a(out);
     std::ofstream(a.partial_path()) << "half";
     EXPECT_TRUE(fs::exists(a.partial_path()));
   }
@@ -79,7 +79,7 @@ TEST_F(Atomic, PartialRemovedWithoutCommit) {
 TEST_F(Atomic, CommitReplacesAnOlderFile) {
   const std::string out = file("r.txt");
   std::ofstream(out) << "old";
-  io::AtomicOutput a(out);
+  tool::AtomicOutput a(out);
   std::ofstream(a.partial_path()) << "new";
   a.commit();
   std::ifstream in(out);
@@ -89,31 +89,31 @@ TEST_F(Atomic, CommitReplacesAnOlderFile) {
 }
 
 TEST_F(Atomic, CommitWithoutPartialFileIsARuntimeFailure) {
-  io::AtomicOutput a(file("never-written.h5"));
+  tool::AtomicOutput a(file("never-written.h5"));
   EXPECT_THROW(a.commit(), RuntimeFailure);
 }
 
 TEST_F(Atomic, MissingDirectoryIsAnInputErrorAndCreatesNothing) {
   const std::string out = file("no/such/dir/out.h5");
   try {
-    io::AtomicOutput a(out);
+    tool::AtomicOutput a(out);
     FAIL() << "no exception";
   } catch (const InputError& e) {
     EXPECT_EQ(e.file(), out);
     const std::string msg = e.what();
     EXPECT_NE(msg.find("cannot write output: directory '" + file("no/such/dir") + "' does not exist"), std::string::npos) << msg;
   }
-  EXPECT_THROW(io::check_output_writable(out), InputError);
+  EXPECT_THROW(tool::check_output_writable(out), InputError);
   EXPECT_EQ(entries(), 0u);
 }
 
 TEST_F(Atomic, DirectoryAsOutputOrParentIsAFile) {
   fs::create_directory(file("sub"));
-  EXPECT_THROW(io::check_output_writable(file("sub")), InputError);
+  EXPECT_THROW(tool::check_output_writable(file("sub")), InputError);
   std::ofstream(file("plain")) << "x";
-  EXPECT_THROW(io::check_output_writable(file("plain/out.h5")), InputError);
-  EXPECT_THROW(io::check_output_writable(""), InputError);
-  EXPECT_NO_THROW(io::check_output_writable(file("fine.h5")));
+  EXPECT_THROW(tool::check_output_writable(file("plain/out.h5")), InputError);
+  EXPECT_THROW(tool::check_output_writable(""), InputError);
+  EXPECT_NO_THROW(tool::check_output_writable(file("fine.h5")));
   EXPECT_FALSE(fs::exists(file("fine.h5")));
 }
 

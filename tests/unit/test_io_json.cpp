@@ -12,7 +12,7 @@
 #include <string>
 
 #include "anisodyn/core/error.hpp"
-#include "anisodyn/io/json_config.hpp"
+#include "anisodyn/tool/json_config.hpp"
 
 using namespace anisodyn;
 using nlohmann::json;
@@ -43,14 +43,14 @@ bool contains(const std::string& haystack, const std::string& needle) {
 
 TEST_F(JsonFiles, LoadsValidFile) {
   const auto path = write("ok.json", R"({"a": 1, "b": [1, 2]})");
-  const json j = io::load_json_file(path);
+  const json j = tool::load_json_file(path);
   EXPECT_EQ(j["a"], 1);
   EXPECT_EQ(j["b"].size(), 2u);
 }
 
 TEST_F(JsonFiles, MalformedFileNamesLineAndColumn) {
   const auto path = write("bad.json", "{\n  \"a\": 1,\n  \"b\": ,\n  \"c\": 3\n}\n");
-  const InputError e = input_error([&] { io::load_json_file(path); });
+  const InputError e = input_error([&] { tool::load_json_file(path); });
   EXPECT_EQ(e.file(), path);
   const std::string msg = e.what();
   EXPECT_TRUE(contains(msg, path + ": invalid JSON at line 3, column 8:")) << msg;
@@ -59,62 +59,62 @@ TEST_F(JsonFiles, MalformedFileNamesLineAndColumn) {
 
 TEST_F(JsonFiles, TruncatedFileNamesLastLine) {
   const auto path = write("trunc.json", "{\n  \"a\": [1, 2,\n");
-  const std::string msg = input_error([&] { io::load_json_file(path); }).what();
+  const std::string msg = input_error([&] { tool::load_json_file(path); }).what();
   EXPECT_TRUE(contains(msg, "invalid JSON at line 3")) << msg;
 }
 
 TEST_F(JsonFiles, MissingFileSaysCannotOpen) {
-  const InputError e = input_error([&] { io::load_json_file(dir_ + "/nope.json"); });
+  const InputError e = input_error([&] { tool::load_json_file(dir_ + "/nope.json"); });
   EXPECT_EQ(e.file(), dir_ + "/nope.json");
   EXPECT_TRUE(contains(e.what(), "cannot open file: No such file or directory")) << e.what();
-  EXPECT_TRUE(contains(input_error([&] { io::load_json_file(dir_); }).what(), "cannot open file"));
+  EXPECT_TRUE(contains(input_error([&] { tool::load_json_file(dir_); }).what(), "cannot open file"));
 }
 
 // ---- --set -------------------------------------------------------------------------------------------
 
 TEST(Override, CreatesNestedObjects) {
   json j = json::object();
-  io::apply_override(j, "mc.compression.target=0.55");
+  tool::apply_override(j, "mc.compression.target=0.55");
   EXPECT_EQ(j["mc"]["compression"]["target"], 0.55);
-  io::apply_override(j, "mc.steps=1000");
+  tool::apply_override(j, "mc.steps=1000");
   EXPECT_EQ(j["mc"]["steps"], 1000);
   EXPECT_EQ(j["mc"]["compression"]["target"], 0.55);
 }
 
 TEST(Override, ArrayIndexInBracketsOrDots) {
   json j = json::parse(R"({"species": [{"mass": 1}, {"mass": 2, "shape": {"edges": [1, 2, 3]}}]})");
-  io::apply_override(j, "species[1].mass=2.5");
+  tool::apply_override(j, "species[1].mass=2.5");
   EXPECT_EQ(j["species"][1]["mass"], 2.5);
-  io::apply_override(j, "species.0.mass=7");
+  tool::apply_override(j, "species.0.mass=7");
   EXPECT_EQ(j["species"][0]["mass"], 7);
-  io::apply_override(j, "species[1].shape.edges[2]=9");
+  tool::apply_override(j, "species[1].shape.edges[2]=9");
   EXPECT_EQ(j["species"][1]["shape"]["edges"], json::parse("[1, 2, 9]"));
-  io::apply_override(j, "species[1].shape.edges=[4,5,6]");
+  tool::apply_override(j, "species[1].shape.edges=[4,5,6]");
   EXPECT_EQ(j["species"][1]["shape"]["edges"], json::parse("[4, 5, 6]"));
 }
 
 TEST(Override, ValueParsedAsJsonOtherwiseString) {
   json j = json::object();
-  io::apply_override(j, "name=hello world");
+  tool::apply_override(j, "name=hello world");
   EXPECT_EQ(j["name"], "hello world");
-  io::apply_override(j, "flag=true");
+  tool::apply_override(j, "flag=true");
   EXPECT_EQ(j["flag"], true);
-  io::apply_override(j, "quoted=\"42\"");
+  tool::apply_override(j, "quoted=\"42\"");
   EXPECT_EQ(j["quoted"], "42");
-  io::apply_override(j, "n=42");
+  tool::apply_override(j, "n=42");
   EXPECT_EQ(j["n"], 42);
-  io::apply_override(j, "path=results/a=b.h5");  // only the first '=' separates
+  tool::apply_override(j, "path=results/a=b.h5");  // only the first '=' separates
   EXPECT_EQ(j["path"], "results/a=b.h5");
-  io::apply_override(j, "empty=");
+  tool::apply_override(j, "empty=");
   EXPECT_EQ(j["empty"], "");
-  io::apply_override(j, "obj={\"x\": [1]}");
+  tool::apply_override(j, "obj={\"x\": [1]}");
   EXPECT_EQ(j["obj"]["x"][0], 1);
 }
 
 TEST(Override, MalformedAssignmentsAreInputErrors) {
   for (const std::string bad : {"novalue", "=3", "a..b=1", "a.=1", ".a=1", "a[x]=1", "a[1=2", "a]=1", "[0]=1", "a[]=1"}) {
     json j = json::parse(R"({"a": [1, 2]})");
-    const InputError e = input_error([&] { io::apply_override(j, bad); });
+    const InputError e = input_error([&] { tool::apply_override(j, bad); });
     EXPECT_EQ(e.file(), "--set") << bad;
     EXPECT_TRUE(contains(e.what(), "expected key.path=value, got '" + bad + "'")) << e.what();
   }
@@ -122,13 +122,13 @@ TEST(Override, MalformedAssignmentsAreInputErrors) {
 
 TEST(Override, BadPathsNameThePath) {
   json j = json::parse(R"({"a": 5, "list": [1, 2]})");
-  const InputError through_scalar = input_error([&] { io::apply_override(j, "a.b=1"); });
+  const InputError through_scalar = input_error([&] { tool::apply_override(j, "a.b=1"); });
   EXPECT_EQ(through_scalar.json_path(), "a.b");
   EXPECT_TRUE(contains(through_scalar.what(), "'a' is a number, not an object")) << through_scalar.what();
-  const InputError out_of_range = input_error([&] { io::apply_override(j, "list[5]=1"); });
+  const InputError out_of_range = input_error([&] { tool::apply_override(j, "list[5]=1"); });
   EXPECT_EQ(out_of_range.json_path(), "list[5]");
   EXPECT_TRUE(contains(out_of_range.what(), "out of range")) << out_of_range.what();
-  const InputError index_on_object = input_error([&] { io::apply_override(j, "missing[0]=1"); });
+  const InputError index_on_object = input_error([&] { tool::apply_override(j, "missing[0]=1"); });
   EXPECT_TRUE(contains(index_on_object.what(), "not an array")) << index_on_object.what();
 }
 
@@ -138,7 +138,7 @@ TEST(ConfigNode, TypedAccessWithDefaults) {
   const json j = json::parse(R"({
     "phi": 0.3, "steps": 1e6, "n": 12, "flag": true, "name": "run",
     "mode": "npt", "edges": [1, 2, 3], "list": [0.5, 1.5], "unset": null, "_comment": "ignored"})");
-  io::ConfigNode c(j, "config.json");
+  tool::ConfigNode c(j, "config.json");
   EXPECT_EQ(c.positive("phi"), 0.3);
   EXPECT_EQ(c.positive_integer("steps"), 1000000);
   EXPECT_EQ(c.integer("n"), 12);
@@ -158,7 +158,7 @@ TEST(ConfigNode, TypedAccessWithDefaults) {
 
 TEST(ConfigNode, WrongTypeNamesFilePathExpectationAndValue) {
   const json j = json::parse(R"({"species": [{"shape": {"edges": "abc"}}]})");
-  io::ConfigNode c(j, "config.json");
+  tool::ConfigNode c(j, "config.json");
   auto species = c.objects("species");
   ASSERT_EQ(species.size(), 1u);
   auto shape = species[0].object("shape");
@@ -171,7 +171,7 @@ TEST(ConfigNode, WrongTypeNamesFilePathExpectationAndValue) {
 TEST(ConfigNode, RangeAndKindErrors) {
   const json j = json::parse(R"({"zero": 0, "neg": -1, "frac": 1.5, "word": "x", "mode": "nve", "v": [1, 2],
                                  "list": [1, "a"], "arr": [{"a": 1}, 3], "huge": 1e30})");
-  io::ConfigNode c(j, "c.json");
+  tool::ConfigNode c(j, "c.json");
   EXPECT_TRUE(contains(input_error([&] { c.positive("zero"); }).what(), "at zero: expected a positive number, got 0"));
   EXPECT_TRUE(contains(input_error([&] { c.non_negative("neg"); }).what(), "expected a non-negative number, got -1"));
   EXPECT_TRUE(contains(input_error([&] { c.integer("frac"); }).what(), "expected an integer, got 1.5"));
@@ -192,7 +192,7 @@ TEST(ConfigNode, RangeAndKindErrors) {
 
 TEST(ConfigNode, MissingRequiredKey) {
   const json j = json::parse(R"({"species": [{"name": "A"}], "opt": null})");
-  io::ConfigNode c(j, "config.json");
+  tool::ConfigNode c(j, "config.json");
   auto sp = c.objects("species");
   const InputError e = input_error([&] { sp[0].positive("mass"); });
   EXPECT_EQ(e.json_path(), "species[0].mass");
@@ -204,7 +204,7 @@ TEST(ConfigNode, MissingRequiredKey) {
 TEST(ConfigNode, UnknownKeysAreFoundEverywhereWithSuggestions) {
   {
     const json j = json::parse(R"({"temperature": 1, "temprature": 2})");
-    io::ConfigNode c(j, "config.json");
+    tool::ConfigNode c(j, "config.json");
     c.number("temperature");
     EXPECT_NO_THROW(c.number("pressure", 1.0));
     const InputError e = input_error([&] { c.finish(); });
@@ -213,7 +213,7 @@ TEST(ConfigNode, UnknownKeysAreFoundEverywhereWithSuggestions) {
   }
   {
     const json j = json::parse(R"({"species": [{"name": "A", "mass": 1}, {"name": "B", "diamter": 1}]})");
-    io::ConfigNode c(j, "config.json");
+    tool::ConfigNode c(j, "config.json");
     for (auto& s : c.objects("species")) {
       s.string("name");
       s.number("mass", 1.0);
@@ -226,7 +226,7 @@ TEST(ConfigNode, UnknownKeysAreFoundEverywhereWithSuggestions) {
   {
     // A whole block that is never read is reported at its own key.
     const json j = json::parse(R"({"a": 1, "mc": {"steps": 3}})");
-    io::ConfigNode c(j, "config.json");
+    tool::ConfigNode c(j, "config.json");
     c.number("a");
     const InputError e = input_error([&] { c.finish(); });
     EXPECT_EQ(e.json_path(), "mc");
@@ -235,7 +235,7 @@ TEST(ConfigNode, UnknownKeysAreFoundEverywhereWithSuggestions) {
   {
     // Keys read through a child node, value() and mark_used() count as known; '_' keys are comments.
     const json j = json::parse(R"({"mc": {"steps": 3, "_note": "x"}, "extra": {"free": "form"}, "later": 1})");
-    io::ConfigNode c(j, "config.json");
+    tool::ConfigNode c(j, "config.json");
     c.object("mc").integer("steps");
     c.value("extra");
     c.mark_used("later");
@@ -244,21 +244,21 @@ TEST(ConfigNode, UnknownKeysAreFoundEverywhereWithSuggestions) {
 }
 
 TEST(ConfigNode, OptionalObjectsAndTemporaries) {
-  io::ConfigNode c(json::parse(R"({"field": {"strength": 2}})"), "cfg.json");  // temporary document
+  tool::ConfigNode c(json::parse(R"({"field": {"strength": 2}})"), "cfg.json");  // temporary document
   auto field = c.optional_object("field");
   ASSERT_TRUE(field.has_value());
   EXPECT_EQ(field->path(), "field");
   EXPECT_EQ(field->number("strength"), 2.0);
   EXPECT_FALSE(c.optional_object("dipole").has_value());
   EXPECT_NO_THROW(c.finish());
-  EXPECT_THROW(io::ConfigNode(json::array(), "cfg.json"), InputError);
+  EXPECT_THROW(tool::ConfigNode(json::array(), "cfg.json"), InputError);
 }
 
 TEST_F(JsonFiles, OverrideThenValidateEndToEnd) {
   const auto path = write("run.json", R"({"species": [{"name": "A", "mass": 1.0}], "steps": 10})");
-  json j = io::load_json_file(path);
-  io::apply_overrides(j, {"species[0].mass=-2", "steps=20"});
-  io::ConfigNode c(j, path);
+  json j = tool::load_json_file(path);
+  tool::apply_overrides(j, {"species[0].mass=-2", "steps=20"});
+  tool::ConfigNode c(j, path);
   EXPECT_EQ(c.positive_integer("steps"), 20);
   auto sp = c.objects("species");
   const InputError e = input_error([&] { sp[0].positive("mass"); });

@@ -4,13 +4,13 @@
 
 #include "anisodyn/config/builder.hpp"
 #include "anisodyn/interactions/hard_overlap.hpp"
-#include "anisodyn/system/species_config.hpp"
+#include "anisodyn/io/species_config.hpp"
 
 namespace anisodyn {
 
 namespace {
 
-OrientationRule parse_orientation(std::optional<io::ConfigNode> node, const Shape& shape) {
+OrientationRule parse_orientation(std::optional<tool::ConfigNode> node, const Shape& shape) {
   OrientationRule rule;
   rule.body_axis = default_alignment_axis(shape);
   if (!node) return rule;
@@ -29,7 +29,7 @@ OrientationRule parse_orientation(std::optional<io::ConfigNode> node, const Shap
 
 /// Merges the configuration's species into `table`: a name already present must describe the same
 /// species. Returns the index of each configured species in the table.
-std::map<std::string, int> merge_species(SpeciesTable& table, io::ConfigNode& cfg, nlohmann::json& origins) {
+std::map<std::string, int> merge_species(SpeciesTable& table, tool::ConfigNode& cfg, nlohmann::json& origins) {
   std::map<std::string, int> index;
   for (std::size_t s = 0; s < table.size(); ++s) index[table[s].name] = static_cast<int>(s);
   if (!cfg.has("species")) return index;
@@ -51,7 +51,7 @@ std::map<std::string, int> merge_species(SpeciesTable& table, io::ConfigNode& cf
 
 }  // namespace
 
-State build_configuration(io::ConfigNode& cfg, const std::optional<State>& existing, std::uint64_t seed, std::uint64_t replica,
+State build_configuration(tool::ConfigNode& cfg, const std::optional<State>& existing, std::uint64_t seed, std::uint64_t replica,
                           nlohmann::json* diffusion_origins) {
   State state;
   if (existing) state = *existing;

@@ -5,7 +5,7 @@
 #include <set>
 
 #include "anisodyn/core/error.hpp"
-#include "anisodyn/system/species_config.hpp"
+#include "anisodyn/io/species_config.hpp"
 
 namespace anisodyn {
 
@@ -17,7 +17,7 @@ std::string format_number(double v) {
   return buf;
 }
 
-int parse_axis_letter(io::ConfigNode& node, const std::string& key, const std::string& letters, int fallback) {
+int parse_axis_letter(tool::ConfigNode& node, const std::string& key, const std::string& letters, int fallback) {
   if (!node.has(key)) return fallback;
   const std::string v = node.string(key);
   const auto pos = letters.find(v);
@@ -26,7 +26,7 @@ int parse_axis_letter(io::ConfigNode& node, const std::string& key, const std::s
   return static_cast<int>(pos);
 }
 
-DmcMoveOptions parse_moves(std::optional<io::ConfigNode> node) {
+DmcMoveOptions parse_moves(std::optional<tool::ConfigNode> node) {
   DmcMoveOptions m;
   if (!node) return m;
   m.rotation = node->choice("rotation", {"exponential", "sequential"}, "exponential") == "sequential"
@@ -44,7 +44,7 @@ DmcMoveOptions parse_moves(std::optional<io::ConfigNode> node) {
   return m;
 }
 
-FieldSegment parse_segment(io::ConfigNode& seg) {
+FieldSegment parse_segment(tool::ConfigNode& seg) {
   FieldSegment s;
   s.field_on = seg.choice("field", {"on", "off"}) == "on";
   if (seg.has("cycles") == seg.has("time")) seg.fail("", "expected exactly one of 'cycles' or 'time' (Brownian time) for the segment's length");
@@ -60,7 +60,7 @@ FieldSegment parse_segment(io::ConfigNode& seg) {
 
 /// `switches` (absolute instants, strictly increasing, one unit) → segments; the run's end comes
 /// from `cycles` or `time` at the top level.
-std::vector<FieldSegment> parse_switches(io::ConfigNode& schedule, bool initially_on, const FieldSegment& end) {
+std::vector<FieldSegment> parse_switches(tool::ConfigNode& schedule, bool initially_on, const FieldSegment& end) {
   std::vector<FieldSegment> out;
   bool on = initially_on;
   double last = 0.0;
@@ -88,7 +88,7 @@ std::vector<FieldSegment> parse_switches(io::ConfigNode& schedule, bool initiall
   return out;
 }
 
-void parse_field(io::ConfigNode& cfg, DmcProtocol& p, bool& initially_on) {
+void parse_field(tool::ConfigNode& cfg, DmcProtocol& p, bool& initially_on) {
   initially_on = false;
   auto field = cfg.optional_object("field");
   if (!field) return;
@@ -118,7 +118,7 @@ void parse_field(io::ConfigNode& cfg, DmcProtocol& p, bool& initially_on) {
 }
 
 /// With schedule.segments the first segment says whether the field starts on.
-void field_initially_has_no_effect(io::ConfigNode& cfg) {
+void field_initially_has_no_effect(tool::ConfigNode& cfg) {
   if (auto field = cfg.optional_object("field"))
     field->reject_unless(false, "initially", "with schedule.segments (the first segment's 'field' says how the run starts)");
 }
@@ -136,7 +136,7 @@ bool FrameRules::log_cycle_due(std::int64_t since_switch) const {
   return false;
 }
 
-DmcProtocol parse_dmc_protocol(io::ConfigNode& cfg) {
+DmcProtocol parse_dmc_protocol(tool::ConfigNode& cfg) {
   DmcProtocol p;
   p.seed = static_cast<std::uint64_t>(cfg.non_negative_integer("seed", 1));
   if (auto moves = cfg.optional_object("moves"))

@@ -9,17 +9,17 @@ namespace anisodyn::hydro {
 
 namespace {
 
-using ShapeParser = HydroShape (*)(io::ConfigNode&);
+using ShapeParser = HydroShape (*)(tool::ConfigNode&);
 
-HydroShape parse_sphere(io::ConfigNode& n) { return HydroShape::sphere(n.positive("diameter")); }
-HydroShape parse_cube(io::ConfigNode& n) { return HydroShape::cuboid(Vec3::Constant(n.positive("edge"))); }
-HydroShape parse_cuboid(io::ConfigNode& n) { return HydroShape::cuboid(n.positive_vec3("edges")); }
-HydroShape parse_ellipsoid(io::ConfigNode& n) { return HydroShape::ellipsoid(n.positive_vec3("semi_axes")); }
-HydroShape parse_cylinder(io::ConfigNode& n) { return HydroShape::cylinder(n.positive("length"), n.positive("diameter")); }
-HydroShape parse_spherocylinder(io::ConfigNode& n) {
+HydroShape parse_sphere(tool::ConfigNode& n) { return HydroShape::sphere(n.positive("diameter")); }
+HydroShape parse_cube(tool::ConfigNode& n) { return HydroShape::cuboid(Vec3::Constant(n.positive("edge"))); }
+HydroShape parse_cuboid(tool::ConfigNode& n) { return HydroShape::cuboid(n.positive_vec3("edges")); }
+HydroShape parse_ellipsoid(tool::ConfigNode& n) { return HydroShape::ellipsoid(n.positive_vec3("semi_axes")); }
+HydroShape parse_cylinder(tool::ConfigNode& n) { return HydroShape::cylinder(n.positive("length"), n.positive("diameter")); }
+HydroShape parse_spherocylinder(tool::ConfigNode& n) {
   return HydroShape::spherocylinder(n.non_negative("length"), n.positive("diameter"));
 }
-HydroShape parse_sphere_union(io::ConfigNode& n) {
+HydroShape parse_sphere_union(tool::ConfigNode& n) {
   const auto& centres = n.value("centres");
   if (!centres.is_array() || centres.empty()) n.fail("centres", "expected an array of [x, y, z] sphere centres");
   std::vector<Vec3> c;
@@ -61,7 +61,7 @@ const ConstructionRegistration kConstructionRegistry[] = {
     {"cell_centres", &cell_centre_beads},
 };
 
-const ConstructionRegistration& parse_construction(io::ConfigNode& n, const std::string& fallback) {
+const ConstructionRegistration& parse_construction(tool::ConfigNode& n, const std::string& fallback) {
   std::vector<std::string> names;
   for (const auto& r : kConstructionRegistry) names.emplace_back(r.name);
   const std::string name = n.choice("construction", names, fallback);
@@ -70,7 +70,7 @@ const ConstructionRegistration& parse_construction(io::ConfigNode& n, const std:
   n.fail("construction", "expected a known shell construction");
 }
 
-ExtrapolationRule parse_extrapolation(io::ConfigNode& n, ExtrapolationRule fallback) {
+ExtrapolationRule parse_extrapolation(tool::ConfigNode& n, ExtrapolationRule fallback) {
   const ExtrapolationRule orders[] = {ExtrapolationRule::Linear, ExtrapolationRule::Quadratic, ExtrapolationRule::Auto};
   std::vector<std::string> names;
   for (auto o : orders) names.push_back(extrapolation_name(o));
@@ -82,7 +82,7 @@ ExtrapolationRule parse_extrapolation(io::ConfigNode& n, ExtrapolationRule fallb
 
 /// Builds the coarsest allowed shell once, so that a construction that does not cover the shape
 /// fails while parsing.
-void check_construction_covers(io::ConfigNode& n, const HydroSpeciesJob& job) {
+void check_construction_covers(tool::ConfigNode& n, const HydroSpeciesJob& job) {
   try {
     job.construction(job.shape, 0.25 * thinnest_dimension(job.shape));
   } catch (const InputError& e) {
@@ -90,7 +90,7 @@ void check_construction_covers(io::ConfigNode& n, const HydroSpeciesJob& job) {
   }
 }
 
-ShellSeries parse_shell_series(io::ConfigNode& n, const ShellSeries& fallback) {
+ShellSeries parse_shell_series(tool::ConfigNode& n, const ShellSeries& fallback) {
   ShellSeries s = fallback;
   s.count = static_cast<int>(n.positive_integer("count", s.count));
   if (s.count < 3) n.fail("count", "expected at least 3 shell resolutions for an extrapolation to zero bead size");
@@ -100,7 +100,7 @@ ShellSeries parse_shell_series(io::ConfigNode& n, const ShellSeries& fallback) {
   return s;
 }
 
-std::vector<double> parse_bead_radii(io::ConfigNode& n) {
+std::vector<double> parse_bead_radii(tool::ConfigNode& n) {
   std::vector<double> r = n.numbers("bead_radii");
   for (std::size_t k = 0; k < r.size(); ++k)
     if (!(r[k] > 0.0)) n.fail("bead_radii[" + std::to_string(k) + "]", "expected a positive bead radius");
@@ -112,9 +112,9 @@ std::vector<double> parse_bead_radii(io::ConfigNode& n) {
 
 }  // namespace
 
-HydroShape parse_hydro_shape(io::ConfigNode node) { return io::parse_registered(node, "type", kShapeRegistry); }
+HydroShape parse_hydro_shape(tool::ConfigNode node) { return tool::parse_registered(node, "type", kShapeRegistry); }
 
-HydroConfig parse_hydro_config(io::ConfigNode& cfg) {
+HydroConfig parse_hydro_config(tool::ConfigNode& cfg) {
   HydroConfig out;
   out.use_symmetry = cfg.boolean("symmetry", true);
   const std::string default_construction = parse_construction(cfg, kConstructionRegistry[0].name).name;

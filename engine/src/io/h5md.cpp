@@ -11,8 +11,8 @@
 #include <set>
 
 #include "anisodyn/core/error.hpp"
-#include "anisodyn/io/atomic_file.hpp"
-#include "anisodyn/io/json_config.hpp"
+#include "anisodyn/tool/atomic_file.hpp"
+#include "anisodyn/tool/json_config.hpp"
 #include "anisodyn/version.hpp"
 #include "anisodyn/io/hdf5_support.hpp"
 
@@ -387,7 +387,7 @@ struct FileReader {
   json read_json(const std::string& hpath) const {
     const std::string text = read_text(hpath);
     try {
-      return parse_json_text(text, path);
+      return tool::parse_json_text(text, path);
     } catch (const InputError& e) {
       // Re-anchor the parser's message at the dataset holding the text.
       const std::string msg = e.what();
@@ -459,7 +459,7 @@ SpeciesTable read_species_table(const FileReader& m) {
 
 struct H5mdWriter::Impl {
   // Declared first, destroyed last: removes the partial file after all HDF5 handles are closed.
-  AtomicOutput out;
+  tool::AtomicOutput out;
   WriteContext w;
   std::string path;
 
@@ -682,7 +682,7 @@ H5mdWriter& H5mdWriter::operator=(H5mdWriter&&) noexcept = default;
 H5mdWriter::~H5mdWriter() {
   if (!impl_) return;
   QuietHdf5 quiet;
-  impl_.reset();  // closes every handle, then AtomicOutput removes the partial file unless committed/suspended
+  impl_.reset();  // closes every handle, then tool::AtomicOutput removes the partial file unless committed/suspended
 }
 
 const std::string& H5mdWriter::path() const { return impl_->path; }

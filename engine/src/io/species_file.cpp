@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "anisodyn/core/error.hpp"
-#include "anisodyn/io/atomic_file.hpp"
-#include "anisodyn/io/json_config.hpp"
+#include "anisodyn/tool/atomic_file.hpp"
+#include "anisodyn/tool/json_config.hpp"
 #include "anisodyn/io/hdf5_support.hpp"
 
 namespace anisodyn::io {
@@ -96,7 +96,7 @@ bool is_hdf5_path(const std::string& path) {
 }
 
 void write_species_file(const std::string& path, const nlohmann::json& document) {
-  AtomicOutput out(path);
+  tool::AtomicOutput out(path);
   if (is_hdf5_path(path)) {
     write_hdf5(out.partial_path(), document);
   } else {
@@ -109,7 +109,7 @@ void write_species_file(const std::string& path, const nlohmann::json& document)
 
 nlohmann::json read_species_file(const std::string& path) {
   if (!std::filesystem::exists(path)) throw InputError(path, "", "cannot open file: no such species file");
-  nlohmann::json doc = is_hdf5_path(path) ? parse_json_text(read_hdf5_document(path), path) : load_json_file(path);
+  nlohmann::json doc = is_hdf5_path(path) ? tool::parse_json_text(read_hdf5_document(path), path) : tool::load_json_file(path);
   if (!doc.is_object() || doc.value("format", "") != "anisodyn-species" || !doc.contains("species") || !doc["species"].is_array())
     throw InputError(path, "format", "expected an anisodyn species file (\"format\": \"anisodyn-species\", written by anisodyn-hydro)");
   return doc;

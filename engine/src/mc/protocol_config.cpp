@@ -6,16 +6,16 @@
 namespace anisodyn {
 
 namespace {
-BoxMoves parse_box_moves(io::ConfigNode& n) {
+BoxMoves parse_box_moves(tool::ConfigNode& n) {
   return n.choice("box_moves", {"isotropic", "per_axis"}, "isotropic") == "isotropic" ? BoxMoves::Isotropic : BoxMoves::PerAxis;
 }
 
 /// Keys of one phase type or compression method, refused elsewhere with the reason why.
-void reject_keys_of(io::ConfigNode& n, bool applies, std::initializer_list<const char*> keys, const std::string& reason) {
+void reject_keys_of(tool::ConfigNode& n, bool applies, std::initializer_list<const char*> keys, const std::string& reason) {
   for (const char* key : keys) n.reject_unless(applies, key, reason);
 }
 
-McPhase parse_phase(io::ConfigNode n, std::size_t index) {
+McPhase parse_phase(tool::ConfigNode n, std::size_t index) {
   McPhase p;
   const std::string type = n.choice("type", {"compress", "npt", "nvt"});
   p.label = n.string("label", type + "-" + std::to_string(index));
@@ -63,7 +63,7 @@ McPhase parse_phase(io::ConfigNode n, std::size_t index) {
 }
 }  // namespace
 
-OrientationalField parse_orientational_field(io::ConfigNode n) {
+OrientationalField parse_orientational_field(tool::ConfigNode n) {
   OrientationalField f;
   f.strength = n.number("strength");
   const std::string axis = n.choice("axis", {"T", "W", "L"}, "W");
@@ -74,7 +74,7 @@ OrientationalField parse_orientational_field(io::ConfigNode n) {
   return f;
 }
 
-McProtocol parse_mc_protocol(io::ConfigNode& cfg) {
+McProtocol parse_mc_protocol(tool::ConfigNode& cfg) {
   McProtocol p;
   p.seed = static_cast<std::uint64_t>(cfg.non_negative_integer("seed", 1));
   p.target_acceptance = cfg.positive("target_acceptance", 0.35);

@@ -28,7 +28,7 @@
 
 #include "anisodyn/analysis/replica_statistics.hpp"
 #include "anisodyn/analysis/trajectory.hpp"
-#include "anisodyn/io/json_config.hpp"
+#include "anisodyn/tool/json_config.hpp"
 
 namespace anisodyn::analysis {
 
@@ -59,7 +59,7 @@ struct ActiveMicrorheologySettings {
 /// tracer_diameter), D_s, direction, steady_distance, steady_from, position_source, density_map,
 /// bin_width (or dz_bin, rho_bin), on_axis_radius, wake_threshold, order_axis. A force of 0 (Pe = 0)
 /// is valid: the run is then a passive reference.
-ActiveMicrorheologySettings parse_active_microrheology_settings(io::ConfigNode& cfg);
+ActiveMicrorheologySettings parse_active_microrheology_settings(tool::ConfigNode& cfg);
 
 /// Fills the defaults that live in the trajectory: βF from `pe` (or the run's tracer.pe) and the
 /// tracer radius (its sphere diameter / 2), D_s from the species table (sphere with isotropic D).

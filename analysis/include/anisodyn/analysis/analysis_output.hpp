@@ -8,7 +8,7 @@
 //   /                      attrs tool, tool_version, git_revision, created_utc, inputs (JSON text),
 //                          window (JSON text; only when the stage was given a time window)
 //   /parameters            JSON text of the stage parameters
-//   /provenance            JSON text (io/provenance.hpp)
+//   /provenance            JSON text (tool/provenance.hpp)
 //   /<table>               group, attr definition
 //   /<table>/<column>      float64 [rows], attrs units, definition
 //   /scalars/<name>        float64 [2] = (value, standard error), attrs units, definition, details (JSON)

@@ -19,7 +19,7 @@
 #include "anisodyn/analysis/dipolar_clusters.hpp"
 #include "anisodyn/analysis/replica_statistics.hpp"
 #include "anisodyn/analysis/trajectory.hpp"
-#include "anisodyn/io/json_config.hpp"
+#include "anisodyn/tool/json_config.hpp"
 
 namespace anisodyn::analysis {
 
@@ -56,7 +56,7 @@ struct DbscanCalibrationSettings {
 
 /// Reads gamma (required), sigma, field_direction, min_pts, eps, r_max (default 2 sigma),
 /// eps_factors.
-DbscanCalibrationSettings parse_dbscan_settings(io::ConfigNode& cfg);
+DbscanCalibrationSettings parse_dbscan_settings(tool::ConfigNode& cfg);
 
 /// Steps 1–2: the (r_∥, r_⊥) points of one configuration.
 std::vector<Point2> neighbour_separation_points(const std::vector<Vec3>& positions, const Box& box,

@@ -23,7 +23,7 @@
 #include "anisodyn/analysis/trajectory.hpp"
 #include "anisodyn/analysis/union_find.hpp"
 #include "anisodyn/core/box.hpp"
-#include "anisodyn/io/json_config.hpp"
+#include "anisodyn/tool/json_config.hpp"
 
 namespace anisodyn::analysis {
 
@@ -105,7 +105,7 @@ struct DipolarClusterSettings {
 
 /// Reads the dipolar keys (gamma, sigma, bu_max, field_direction, transition_*, plateau_fraction,
 /// max_chain_length).
-DipolarClusterSettings parse_dipolar_cluster_settings(io::ConfigNode& cfg);
+DipolarClusterSettings parse_dipolar_cluster_settings(tool::ConfigNode& cfg);
 
 struct DipolarChainResult {
   std::vector<double> time;                // common grid

@@ -17,7 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "anisodyn/io/h5md.hpp"
-#include "anisodyn/io/json_config.hpp"
+#include "anisodyn/tool/json_config.hpp"
 
 namespace anisodyn::analysis {
 
@@ -44,10 +44,10 @@ struct FrameWindow {
 
 /// Reads the optional `window` object (keys from, to, stride). from ≥ to or stride < 1 → InputError
 /// naming window.to / window.stride; unknown keys inside are reported by the configuration's finish().
-FrameWindow parse_frame_window(io::ConfigNode& cfg);
+FrameWindow parse_frame_window(tool::ConfigNode& cfg);
 
 /// A key that chose frames before every stage took a time window (structure's `frames`, the
 /// clusters' `t_min`) → InputError pointing to `window` instead.
-void refuse_frame_key(io::ConfigNode& cfg, const std::string& key);
+void refuse_frame_key(tool::ConfigNode& cfg, const std::string& key);
 
 }  // namespace anisodyn::analysis

@@ -14,7 +14,7 @@
 #include "anisodyn/analysis/lag_grid.hpp"
 #include "anisodyn/analysis/replica_statistics.hpp"
 #include "anisodyn/analysis/trajectory.hpp"
-#include "anisodyn/io/json_config.hpp"
+#include "anisodyn/tool/json_config.hpp"
 
 namespace anisodyn::analysis {
 
@@ -38,7 +38,7 @@ struct MsdSettings {
 };
 
 /// Reads the MSD keys of a stage configuration (see docs/analysis.md).
-MsdSettings parse_msd_settings(io::ConfigNode& cfg);
+MsdSettings parse_msd_settings(tool::ConfigNode& cfg);
 
 struct MsdComponent {
   std::string name;  // tot, x, y, z, par, perp, body_x, body_y, body_z

@@ -23,7 +23,7 @@
 #include "anisodyn/analysis/replica_statistics.hpp"
 #include "anisodyn/analysis/trajectory.hpp"
 #include "anisodyn/core/box.hpp"
-#include "anisodyn/io/json_config.hpp"
+#include "anisodyn/tool/json_config.hpp"
 
 namespace anisodyn::analysis {
 
@@ -46,7 +46,7 @@ struct NematicClusterSettings {
 };
 
 /// Reads species, axis (T | W | L, required), K1, K2, K_par, K_perp (required), cos_bins.
-NematicClusterSettings parse_nematic_cluster_settings(io::ConfigNode& cfg);
+NematicClusterSettings parse_nematic_cluster_settings(tool::ConfigNode& cfg);
 /// K1 outside (0, 1], K2 outside (−1/2, 1], K_∥ or K_⊥ not positive, … → InputError naming the key.
 void check_nematic_cluster_settings(const NematicClusterSettings& s, const std::string& config_file = "");
 

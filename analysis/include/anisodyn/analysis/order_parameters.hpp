@@ -21,7 +21,7 @@
 #include "anisodyn/analysis/species_selection.hpp"
 #include "anisodyn/analysis/trajectory.hpp"
 #include "anisodyn/core/types.hpp"
-#include "anisodyn/io/json_config.hpp"
+#include "anisodyn/tool/json_config.hpp"
 
 namespace anisodyn::analysis {
 
@@ -76,7 +76,7 @@ struct OrderSettings {
 };
 
 /// Body axis from a config value: "T"/"x" → 0, "W"/"y" → 1, "L"/"z" → 2, "auto" → −1 (if allowed).
-int parse_body_axis(io::ConfigNode& cfg, const std::string& key, const std::string& fallback, bool allow_auto);
+int parse_body_axis(tool::ConfigNode& cfg, const std::string& key, const std::string& fallback, bool allow_auto);
 /// "T", "W" or "L".
 const char* axis_letter(int k);
 
@@ -141,7 +141,7 @@ struct OrderStageSettings {
 
 /// Reads the keys of anisodyn-order (species, observables, main_axis, rod_axis, field_direction,
 /// chain_threshold {gamma, sigma, bu_max}, average_from).
-OrderStageSettings parse_order_settings(io::ConfigNode& cfg);
+OrderStageSettings parse_order_settings(tool::ConfigNode& cfg);
 
 struct OrderSeries {
   std::string name, units, definition;

@@ -19,7 +19,7 @@
 
 #include "anisodyn/analysis/trajectory.hpp"
 #include "anisodyn/core/types.hpp"
-#include "anisodyn/io/json_config.hpp"
+#include "anisodyn/tool/json_config.hpp"
 
 namespace anisodyn::analysis {
 
@@ -43,7 +43,7 @@ struct PairStructureSettings {
 /// Reads the keys of anisodyn-structure (pairs, dr, r_max, reference, direction, axis,
 /// director_species, cylinder_radius, slab_half_height, slab_bins). Frames are chosen by the
 /// stage's time window (frame_window.hpp); the former `frames` key is refused with that advice.
-PairStructureSettings parse_structure_settings(io::ConfigNode& cfg);
+PairStructureSettings parse_structure_settings(tool::ConfigNode& cfg);
 
 struct PairCurves {
   std::string a, b;

@@ -30,7 +30,7 @@
 #include "anisodyn/analysis/msd.hpp"
 #include "anisodyn/analysis/replica_statistics.hpp"
 #include "anisodyn/analysis/trajectory.hpp"
-#include "anisodyn/io/json_config.hpp"
+#include "anisodyn/tool/json_config.hpp"
 
 namespace anisodyn::analysis {
 
@@ -68,7 +68,7 @@ struct PassiveMicrorheologySettings {
 
 /// Reads the keys of the passive mode: species, radius | tracer_diameter, kT, alpha_fit_decades,
 /// lags_per_decade, max_origins, fit {t_min, t_max}, evans_t_max.
-PassiveMicrorheologySettings parse_passive_microrheology_settings(io::ConfigNode& cfg);
+PassiveMicrorheologySettings parse_passive_microrheology_settings(tool::ConfigNode& cfg);
 
 struct PassiveResult {
   std::vector<double> time;                 // MSD lags t_k (ascending)

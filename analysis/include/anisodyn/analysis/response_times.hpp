@@ -20,7 +20,7 @@
 #include "anisodyn/analysis/order_parameters.hpp"
 #include "anisodyn/analysis/replica_statistics.hpp"
 #include "anisodyn/analysis/trajectory.hpp"
-#include "anisodyn/io/json_config.hpp"
+#include "anisodyn/tool/json_config.hpp"
 
 namespace anisodyn::analysis {
 
@@ -91,7 +91,7 @@ struct ResponseSettings {
 
 /// Reads the keys of anisodyn-response (species, signal, main_axis, field_direction, switch_on,
 /// switch_off, cycle, smoothing_fraction, outlier_threshold).
-ResponseSettings parse_response_settings(io::ConfigNode& cfg);
+ResponseSettings parse_response_settings(tool::ConfigNode& cfg);
 
 struct ResponseResult {
   std::string signal;

@@ -10,7 +10,7 @@
 #include "anisodyn/analysis/lag_grid.hpp"
 #include "anisodyn/analysis/replica_statistics.hpp"
 #include "anisodyn/analysis/trajectory.hpp"
-#include "anisodyn/io/json_config.hpp"
+#include "anisodyn/tool/json_config.hpp"
 
 namespace anisodyn::analysis {
 
@@ -23,7 +23,7 @@ struct RotationSettings {
   double correlation_floor = 0.05;  // C_n fits use the lags where C_n ≥ this (and < 1)
 };
 
-RotationSettings parse_rotation_settings(io::ConfigNode& cfg);
+RotationSettings parse_rotation_settings(tool::ConfigNode& cfg);
 
 struct AxisRotation {
   int axis = 0;

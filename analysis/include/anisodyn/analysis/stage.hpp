@@ -18,14 +18,14 @@
 #include "anisodyn/analysis/analysis_output.hpp"
 #include "anisodyn/analysis/species_selection.hpp"
 #include "anisodyn/analysis/trajectory.hpp"
-#include "anisodyn/io/command_line.hpp"
-#include "anisodyn/io/json_config.hpp"
+#include "anisodyn/tool/command_line.hpp"
+#include "anisodyn/tool/json_config.hpp"
 
 namespace anisodyn::analysis {
 
 struct StageRun {
-  io::CommonOptions& opt;
-  io::ConfigNode& cfg;
+  tool::CommonOptions& opt;
+  tool::ConfigNode& cfg;
   std::vector<std::string> inputs;  // expanded, in order
   AnalysisOutput& out;
   FrameWindow window;               // the configuration's `window` (not given = every frame)
@@ -58,6 +58,6 @@ std::vector<std::pair<SelectedSpecies, Analysis>> analyse_each_species(const Sta
   return analyses;
 }
 
-int run_analysis_stage(int argc, char** argv, const io::ToolInfo& info, const std::function<void(StageRun&)>& body);
+int run_analysis_stage(int argc, char** argv, const tool::ToolInfo& info, const std::function<void(StageRun&)>& body);
 
 }  // namespace anisodyn::analysis

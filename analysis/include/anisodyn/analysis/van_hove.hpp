@@ -14,7 +14,7 @@
 #include "anisodyn/analysis/lag_grid.hpp"
 #include "anisodyn/analysis/replica_statistics.hpp"
 #include "anisodyn/analysis/trajectory.hpp"
-#include "anisodyn/io/json_config.hpp"
+#include "anisodyn/tool/json_config.hpp"
 
 namespace anisodyn::analysis {
 
@@ -32,7 +32,7 @@ struct VanHoveSettings {
   std::size_t max_origins = 0;
 };
 
-VanHoveSettings parse_van_hove_settings(io::ConfigNode& cfg);
+VanHoveSettings parse_van_hove_settings(tool::ConfigNode& cfg);
 
 struct VanHoveCurve {
   std::string component;  // tot, x, …, or phi_T / phi_W / phi_L

@@ -4,7 +4,7 @@
 #include <optional>
 #include <string>
 
-#include "anisodyn/io/json_config.hpp"
+#include "anisodyn/tool/json_config.hpp"
 #include "anisodyn/system/state.hpp"
 
 namespace anisodyn {
@@ -14,7 +14,7 @@ namespace anisodyn {
 /// Every problem with the request is reported as an InputError naming the JSON path.
 /// With diffusion_origins given, it receives {species name: where its diffusion coefficients came
 /// from} for the species the configuration defines (see parse_species).
-State build_configuration(io::ConfigNode& cfg, const std::optional<State>& existing, std::uint64_t seed, std::uint64_t replica = 0,
+State build_configuration(tool::ConfigNode& cfg, const std::optional<State>& existing, std::uint64_t seed, std::uint64_t replica = 0,
                           nlohmann::json* diffusion_origins = nullptr);
 
 }  // namespace anisodyn

@@ -9,7 +9,7 @@
 
 #include "anisodyn/dmc/dmc_engine.hpp"
 #include "anisodyn/dmc/time_balance.hpp"
-#include "anisodyn/io/json_config.hpp"
+#include "anisodyn/tool/json_config.hpp"
 
 namespace anisodyn {
 
@@ -84,7 +84,7 @@ struct DmcProtocol {
 
 /// Parses the configuration. Names of species are checked later against the input state
 /// (check_protocol_species), when the species table is known.
-DmcProtocol parse_dmc_protocol(io::ConfigNode& cfg);
+DmcProtocol parse_dmc_protocol(tool::ConfigNode& cfg);
 /// Checks species names and the tracer against the state; InputError(file, path, …) otherwise.
 void check_protocol_species(const DmcProtocol& p, const State& state, const std::string& config_file);
 

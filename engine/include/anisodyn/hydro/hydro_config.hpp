@@ -15,7 +15,7 @@
 
 #include "anisodyn/hydro/extrapolation.hpp"
 #include "anisodyn/hydro/shell_surface.hpp"
-#include "anisodyn/io/json_config.hpp"
+#include "anisodyn/tool/json_config.hpp"
 
 namespace anisodyn::hydro {
 
@@ -34,10 +34,10 @@ struct HydroConfig {
   bool use_symmetry = true;
 };
 
-HydroShape parse_hydro_shape(io::ConfigNode node);
+HydroShape parse_hydro_shape(tool::ConfigNode node);
 
 /// Parses and checks everything, including that each shell series can be built (bead radii are
 /// chosen here), so that bad input fails before any computation.
-HydroConfig parse_hydro_config(io::ConfigNode& cfg);
+HydroConfig parse_hydro_config(tool::ConfigNode& cfg);
 
 }  // namespace anisodyn::hydro

@@ -14,7 +14,7 @@
 //                                  data (e.g. DMC rotation vectors), see ParticleElement
 //   /observables/<name>            {step, time, value [R] or [R,W]}
 //   /parameters/config             JSON text: the stage's full parameters
-//   /parameters/provenance         JSON text (io/provenance.hpp)
+//   /parameters/provenance         JSON text (tool/provenance.hpp)
 //   /parameters/species/…          species table
 //   /anisodyn/checkpoint/engine_state   JSON text (restart state of the engine)
 //
@@ -44,7 +44,7 @@ struct H5mdHeader {
   std::string creator_version;  // empty → anisodyn::kVersion
   std::string author = "anisodyn user";
   nlohmann::json parameters;    // the stage's full parameters (null → "{}")
-  nlohmann::json provenance;    // make_provenance(…) (null → "{}")
+  nlohmann::json provenance;    // tool::make_provenance(…) (null → "{}")
   SpeciesTable species;         // empty → taken from the first frame's State
   std::size_t frames_per_chunk = 0;  // HDF5 chunking of frame data; 0 = automatic (~128 KiB chunks)
 };
@@ -56,7 +56,7 @@ struct ParticleElement {
   const double* data = nullptr;  // N × width values, row-major
 };
 
-/// Writes an H5MD file to <path>.partial through AtomicOutput; nothing appears at <path> before
+/// Writes an H5MD file to <path>.partial through tool::AtomicOutput; nothing appears at <path> before
 /// commit(). Destroying the writer without commit() removes the partial file. The constructor
 /// throws InputError (exit 2) for an unusable output path; HDF5 failures while writing and
 /// programming errors (changing particle count, unknown species, decreasing step) throw

@@ -5,13 +5,13 @@
 //    "phases": [{"type": "compress", "packing_fraction": 0.34},
 //               {"type": "nvt", "cycles": 20000, "tune": true},
 //               {"type": "nvt", "cycles": 50000, "expect_phase": "nematic"}]}
-#include "anisodyn/io/json_config.hpp"
+#include "anisodyn/tool/json_config.hpp"
 #include "anisodyn/mc/protocol.hpp"
 
 namespace anisodyn {
 
 /// Reads the protocol from the tool configuration.
-McProtocol parse_mc_protocol(io::ConfigNode& cfg);
-OrientationalField parse_orientational_field(io::ConfigNode node);
+McProtocol parse_mc_protocol(tool::ConfigNode& cfg);
+OrientationalField parse_orientational_field(tool::ConfigNode node);
 
 }  // namespace anisodyn

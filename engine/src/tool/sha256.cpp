@@ -1,6 +1,6 @@
 // SHA-256 through OpenSSL's EVP digest interface (libcrypto), the maintained implementation with
 // the x86 SHA extensions and other hardware paths.
-#include "anisodyn/io/sha256.hpp"
+#include "anisodyn/tool/sha256.hpp"
 
 #include <openssl/evp.h>
 
@@ -11,7 +11,7 @@
 
 #include "anisodyn/core/error.hpp"
 
-namespace anisodyn::io {
+namespace anisodyn::tool {
 namespace {
 
 // libcrypto reports failures (e.g. no SHA-256 in a FIPS-restricted provider set) by return value.
@@ -82,4 +82,4 @@ std::string sha256_hex_of_file(const std::string& path) {
   return hasher.hex_digest();
 }
 
-}  // namespace anisodyn::io
+}  // namespace anisodyn::tool

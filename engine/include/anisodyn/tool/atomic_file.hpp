@@ -4,7 +4,7 @@
 // without commit() (exception, interruption) removes its partial file.
 #include <string>
 
-namespace anisodyn::io {
+namespace anisodyn::tool {
 
 /// Throws InputError(path, "", "cannot write output: <reason>") unless `path` can be created:
 /// its directory exists, is a directory and is writable, and `path` itself is not a directory.
@@ -42,4 +42,4 @@ class AtomicOutput {
   bool active_ = true;  // false once moved from
 };
 
-}  // namespace anisodyn::io
+}  // namespace anisodyn::tool

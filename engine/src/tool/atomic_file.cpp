@@ -1,4 +1,4 @@
-#include "anisodyn/io/atomic_file.hpp"
+#include "anisodyn/tool/atomic_file.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -11,7 +11,7 @@
 
 #include "anisodyn/core/error.hpp"
 
-namespace anisodyn::io {
+namespace anisodyn::tool {
 namespace {
 
 std::string directory_of(const std::string& path) {
@@ -82,4 +82,4 @@ void AtomicOutput::commit() {
   fsync_path(directory_of(final_path_), O_RDONLY | O_DIRECTORY, "directory");
 }
 
-}  // namespace anisodyn::io
+}  // namespace anisodyn::tool

@@ -1,4 +1,4 @@
-#include "anisodyn/io/json_config.hpp"
+#include "anisodyn/tool/json_config.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -13,7 +13,7 @@
 
 #include "anisodyn/core/error.hpp"
 
-namespace anisodyn::io {
+namespace anisodyn::tool {
 
 using nlohmann::json;
 
@@ -531,4 +531,4 @@ void ConfigNode::finish() const {
   }
 }
 
-}  // namespace anisodyn::io
+}  // namespace anisodyn::tool

@@ -4,9 +4,9 @@
 // error and detects unknown (misspelt) keys.
 //
 // Typical use in a tool:
-//   nlohmann::json j = io::load_json_file(config_path);
-//   for (const auto& s : overrides) io::apply_override(j, s);
-//   io::ConfigNode cfg(j, config_path);
+//   nlohmann::json j = tool::load_json_file(config_path);
+//   for (const auto& s : overrides) tool::apply_override(j, s);
+//   tool::ConfigNode cfg(j, config_path);
 //   const double phi = cfg.positive("packing_fraction");
 //   for (auto& sp : cfg.objects("species")) { ... sp.vec3("edges") ...; }
 //   cfg.finish();   // unknown keys anywhere in the tree → InputError
@@ -26,7 +26,7 @@
 
 #include "anisodyn/core/types.hpp"
 
-namespace anisodyn::io {
+namespace anisodyn::tool {
 
 /// Reads and parses a JSON file. Missing/unreadable → InputError(path, "", "cannot open file: …");
 /// syntax error → InputError(path, "", "invalid JSON at line L, column C: <parser message>").
@@ -137,4 +137,4 @@ auto parse_registered(ConfigNode& node, const std::string& key, const Registry& 
   node.fail(key, "expected a known type");
 }
 
-}  // namespace anisodyn::io
+}  // namespace anisodyn::tool

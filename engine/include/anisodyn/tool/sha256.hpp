@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-namespace anisodyn::io {
+namespace anisodyn::tool {
 
 /// Incremental hasher: update() any number of times, then hex_digest().
 class Sha256 {
@@ -35,4 +35,4 @@ std::string sha256_hex(std::string_view data);
 /// Hash of a file's bytes. Missing or unreadable file → InputError(path, "", "cannot open file: …").
 std::string sha256_hex_of_file(const std::string& path);
 
-}  // namespace anisodyn::io
+}  // namespace anisodyn::tool

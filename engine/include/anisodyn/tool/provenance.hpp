@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace anisodyn::io {
+namespace anisodyn::tool {
 
 /// {tool, version, git_revision, command_line, argv, created_utc, hostname, inputs: [{path, sha256}]}.
 /// `command_line` is argv joined with POSIX shell quoting (copy-paste runnable); `created_utc` is
@@ -22,4 +22,4 @@ std::string utc_timestamp();
 /// `arg` quoted for a POSIX shell when needed ('…' with embedded quotes escaped).
 std::string shell_quote(const std::string& arg);
 
-}  // namespace anisodyn::io
+}  // namespace anisodyn::tool

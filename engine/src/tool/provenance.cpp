@@ -1,13 +1,13 @@
-#include "anisodyn/io/provenance.hpp"
+#include "anisodyn/tool/provenance.hpp"
 
 #include <unistd.h>
 
 #include <ctime>
 
-#include "anisodyn/io/sha256.hpp"
+#include "anisodyn/tool/sha256.hpp"
 #include "anisodyn/version.hpp"
 
-namespace anisodyn::io {
+namespace anisodyn::tool {
 
 std::vector<std::string> argv_vector(int argc, const char* const* argv) {
   std::vector<std::string> out;
@@ -64,4 +64,4 @@ nlohmann::json make_provenance(const std::string& tool, const std::vector<std::s
           {"inputs", inputs}};
 }
 
-}  // namespace anisodyn::io
+}  // namespace anisodyn::tool

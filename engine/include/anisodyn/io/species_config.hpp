@@ -12,7 +12,7 @@
 // Shape types: sphere {diameter}, cuboid {edges: [T, W, L]}, cube {edge},
 // spherocylinder {length, diameter}. Diffusion coefficients default to zero (MC does not need
 // them; the dynamics engines check that they are set).
-#include "anisodyn/io/json_config.hpp"
+#include "anisodyn/tool/json_config.hpp"
 #include "anisodyn/system/species.hpp"
 
 #include <optional>
@@ -32,14 +32,14 @@ bool same_shape(const Shape& a, const Shape& b);
 
 /// Reads {"file" (a path or a list of paths), "species"}; checks the entry's shape against
 /// expected_shape when given.
-DiffusionFromFile read_diffusion_from(io::ConfigNode node, const std::optional<Shape>& expected_shape);
+DiffusionFromFile read_diffusion_from(tool::ConfigNode node, const std::optional<Shape>& expected_shape);
 
-Shape parse_shape(io::ConfigNode node);
+Shape parse_shape(tool::ConfigNode node);
 /// With diffusion_origin given, it receives where the diffusion coefficients came from (the origin
 /// of diffusion_from, or "configuration" for explicit values, null for none).
-Species parse_species(io::ConfigNode node, nlohmann::json* diffusion_origin = nullptr);
+Species parse_species(tool::ConfigNode node, nlohmann::json* diffusion_origin = nullptr);
 /// The array at `key`; names must be unique.
-SpeciesTable parse_species_table(io::ConfigNode& parent, const std::string& key);
+SpeciesTable parse_species_table(tool::ConfigNode& parent, const std::string& key);
 /// JSON form accepted by parse_species (for writing parameters back out).
 nlohmann::json species_to_json(const Species& s);
 

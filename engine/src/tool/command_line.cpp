@@ -1,4 +1,4 @@
-#include "anisodyn/io/command_line.hpp"
+#include "anisodyn/tool/command_line.hpp"
 
 #include <omp.h>
 
@@ -7,11 +7,11 @@
 #include <iostream>
 
 #include "anisodyn/core/error.hpp"
-#include "anisodyn/io/atomic_file.hpp"
-#include "anisodyn/io/json_config.hpp"
+#include "anisodyn/tool/atomic_file.hpp"
+#include "anisodyn/tool/json_config.hpp"
 #include "anisodyn/version.hpp"
 
-namespace anisodyn::io {
+namespace anisodyn::tool {
 
 namespace po = boost::program_options;
 
@@ -89,4 +89,4 @@ int run_tool(int argc, char** argv, const ToolInfo& info, const std::function<vo
   }
 }
 
-}  // namespace anisodyn::io
+}  // namespace anisodyn::tool

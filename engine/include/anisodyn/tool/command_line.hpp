@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace anisodyn::io {
+namespace anisodyn::tool {
 
 struct ToolInfo {
   std::string name;         // e.g. "anisodyn-mc"
@@ -46,4 +46,4 @@ const std::string& require_one_input_and_output(const CommonOptions& opt);
 /// Runs body with parsed options; returns the exit code (prints errors as "<tool>: error: ...").
 int run_tool(int argc, char** argv, const ToolInfo& info, const std::function<void(CommonOptions&)>& body);
 
-}  // namespace anisodyn::io
+}  // namespace anisodyn::tool

@@ -1,4 +1,4 @@
-#include "anisodyn/system/species_config.hpp"
+#include "anisodyn/io/species_config.hpp"
 
 #include <filesystem>
 #include <set>
@@ -9,18 +9,18 @@
 namespace anisodyn {
 
 namespace {
-using ShapeParser = Shape (*)(io::ConfigNode&);
+using ShapeParser = Shape (*)(tool::ConfigNode&);
 
-Shape parse_sphere(io::ConfigNode& n) { return Shape::sphere(n.positive("diameter")); }
-Shape parse_cuboid(io::ConfigNode& n) {
+Shape parse_sphere(tool::ConfigNode& n) { return Shape::sphere(n.positive("diameter")); }
+Shape parse_cuboid(tool::ConfigNode& n) {
   const Vec3 e = n.positive_vec3("edges");
   return Shape::cuboid(e.x(), e.y(), e.z());
 }
-Shape parse_cube(io::ConfigNode& n) {
+Shape parse_cube(tool::ConfigNode& n) {
   const double a = n.positive("edge");
   return Shape::cuboid(a, a, a);
 }
-Shape parse_spherocylinder(io::ConfigNode& n) {
+Shape parse_spherocylinder(tool::ConfigNode& n) {
   return Shape::spherocylinder(n.non_negative("length"), n.positive("diameter"));
 }
 
@@ -52,7 +52,7 @@ bool same_shape(const Shape& a, const Shape& b) {
 namespace {
 
 /// The diffusion_from files, in the order they are searched.
-std::vector<std::string> diffusion_files(io::ConfigNode& node) {
+std::vector<std::string> diffusion_files(tool::ConfigNode& node) {
   if (node.has("file") && node.raw().at("file").is_array()) {
     std::vector<std::string> files = node.strings("file");
     if (files.empty()) node.fail("file", "expected a species file or a non-empty list of them");
@@ -63,7 +63,7 @@ std::vector<std::string> diffusion_files(io::ConfigNode& node) {
 
 }  // namespace
 
-DiffusionFromFile read_diffusion_from(io::ConfigNode node, const std::optional<Shape>& expected_shape) {
+DiffusionFromFile read_diffusion_from(tool::ConfigNode node, const std::optional<Shape>& expected_shape) {
   const std::vector<std::string> files = diffusion_files(node);
   const std::string name = node.string("species");
   const nlohmann::json* found = nullptr;
@@ -87,7 +87,7 @@ DiffusionFromFile read_diffusion_from(io::ConfigNode node, const std::optional<S
   }
   if (!found) node.fail("species", "expected a species of " + (files.size() > 1 ? "one of the files" : file) + " (" + searched + ")");
   const nlohmann::json entry = *found;
-  io::ConfigNode e(entry, file, "species[" + name + "]");
+  tool::ConfigNode e(entry, file, "species[" + name + "]");
   e.mark_used("source");
   DiffusionFromFile d;
   d.shape = parse_shape(e.object("shape"));
@@ -101,9 +101,9 @@ DiffusionFromFile read_diffusion_from(io::ConfigNode node, const std::optional<S
   return d;
 }
 
-Shape parse_shape(io::ConfigNode node) { return io::parse_registered(node, "type", kShapeRegistry); }
+Shape parse_shape(tool::ConfigNode node) { return tool::parse_registered(node, "type", kShapeRegistry); }
 
-Species parse_species(io::ConfigNode node, nlohmann::json* diffusion_origin) {
+Species parse_species(tool::ConfigNode node, nlohmann::json* diffusion_origin) {
   Species s;
   s.name = node.string("name");
   if (s.name.empty()) node.fail("name", "expected a non-empty species name");
@@ -130,7 +130,7 @@ Species parse_species(io::ConfigNode node, nlohmann::json* diffusion_origin) {
   return s;
 }
 
-SpeciesTable parse_species_table(io::ConfigNode& parent, const std::string& key) {
+SpeciesTable parse_species_table(tool::ConfigNode& parent, const std::string& key) {
   SpeciesTable table;
   std::set<std::string> seen;
   auto nodes = parent.objects(key);
