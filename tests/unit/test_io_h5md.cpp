@@ -89,6 +89,13 @@ void expect_same_state(const State& a, const State& b) {
     EXPECT_EQ(p.species[i], q.species[i]);
     EXPECT_EQ(p.id[i], q.id[i]);
   }
+  ASSERT_EQ(p.has_velocities(), q.has_velocities());
+  ASSERT_EQ(p.has_angular_momenta(), q.has_angular_momenta());
+  for (std::size_t i = 0; i < p.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      if (p.has_velocities()) EXPECT_EQ(bits(p.velocity(i)[k]), bits(q.velocity(i)[k])) << i;
+      if (p.has_angular_momenta()) EXPECT_EQ(bits(p.angular_momentum(i)[k]), bits(q.angular_momentum(i)[k])) << i;
+    }
   ASSERT_EQ(a.species.size(), b.species.size());
   for (std::size_t k = 0; k < a.species.size(); ++k) {
     const Species &s = a.species[k], &t = b.species[k];
@@ -164,6 +171,69 @@ TEST_F(H5md, RoundTripThreeFramesWithChangingBoxIsBitForBit) {
   const InputError out_of_range = input_error([&] { r.read_frame(3); });
   EXPECT_EQ(out_of_range.json_path(), "/particles/all/position/value");
   EXPECT_THROW(r.read_frame(-4), InputError);
+}
+
+/// The state with random velocities and (optionally) angular momenta, as an MD-type engine has.
+State in_motion(State s, Rng& rng, bool angular) {
+  s.particles.carry_velocities();
+  if (angular) s.particles.carry_angular_momenta();
+  for (std::size_t i = 0; i < s.particles.size(); ++i) {
+    s.particles.set_velocity(i, Vec3(rng.uniform(-3, 3), rng.uniform(-3, 3), 1.0 / (3.0 + static_cast<double>(i))));
+    if (angular) s.particles.set_angular_momentum(i, Vec3(rng.uniform(-1, 1), -0.0, std::nextafter(1.0, 2.0)));
+  }
+  return s;
+}
+
+TEST_F(H5md, VelocitiesAndAngularMomentaRoundTripThroughFramesCheckpointsAndResume) {
+  Rng rng(31, 7);
+  std::vector<State> frames;
+  for (int f = 0; f < 3; ++f) frames.push_back(in_motion(random_state(rng, 17, Vec3(10, 11, 12), 50 * f, 0.25 * f), rng, true));
+  const std::string path = file("md.h5");
+  {
+    io::H5mdWriter w(path, header_for(frames[0]));
+    w.append_frame(frames[0]);
+    w.append_frame(frames[1]);
+    w.write_checkpoint({{"step", 50}});
+    w.suspend();
+  }
+  {
+    io::H5mdWriter w = io::H5mdWriter::resume(path, 50);
+    w.append_frame(frames[2]);
+    w.commit();
+  }
+  io::H5mdReader r(path);
+  for (std::size_t f = 0; f < 3; ++f) {
+    SCOPED_TRACE("frame " + std::to_string(f));
+    expect_same_state(frames[f], r.read_frame(static_cast<std::ptrdiff_t>(f)));
+  }
+  // Stored where H5MD puts velocities; the angular momentum beside it.
+  EXPECT_TRUE(link_exists(path, "/particles/all/velocity/value"));
+  EXPECT_TRUE(link_exists(path, "/particles/all/angular_momentum/value"));
+  std::size_t width = 0;
+  EXPECT_EQ(r.read_element_frames("velocity", width).size(), 3u * 17u * 3u);
+  EXPECT_EQ(width, 3u);
+
+  // A one-frame checkpoint file keeps them too, so an MD run restarts exactly.
+  io::write_checkpoint_file(file("md.checkpoint.h5"), header_for(frames[1]), frames[1], {{"step", 50}});
+  expect_same_state(frames[1], io::read_checkpoint_file(file("md.checkpoint.h5")).first);
+
+  // Velocities without angular momenta (point particles); and a state with neither writes neither.
+  const State point = in_motion(random_state(rng, 5, Vec3(9, 9, 9), 0, 0), rng, false);
+  {
+    io::H5mdWriter w(file("points.h5"), header_for(point));
+    w.append_frame(point);
+    w.commit();
+  }
+  expect_same_state(point, io::H5mdReader(file("points.h5")).read_frame(0));
+  EXPECT_FALSE(link_exists(file("points.h5"), "/particles/all/angular_momentum"));
+  const State still = random_state(rng, 5, Vec3(9, 9, 9), 0, 0);
+  {
+    io::H5mdWriter w(file("still.h5"), header_for(still));
+    w.append_frame(still);
+    w.commit();
+  }
+  EXPECT_FALSE(link_exists(file("still.h5"), "/particles/all/velocity"));
+  EXPECT_FALSE(io::H5mdReader(file("still.h5")).read_frame(0).particles.has_velocities());
 }
 
 TEST_F(H5md, LayoutFollowsH5mdAndMDAnalysisExpectations) {

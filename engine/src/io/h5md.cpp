@@ -691,7 +691,38 @@ std::size_t H5mdWriter::frame_count() const { return impl_->frames; }
 
 void H5mdWriter::append_frame(const State& s) { append_frame(s, {}); }
 
+namespace {
+/// N × 3 row-major copy of three component arrays.
+std::vector<double> interleave(const std::vector<double>& a, const std::vector<double>& b, const std::vector<double>& c) {
+  std::vector<double> out(3 * a.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    out[3 * i] = a[i];
+    out[3 * i + 1] = b[i];
+    out[3 * i + 2] = c[i];
+  }
+  return out;
+}
+}  // namespace
+
 void H5mdWriter::append_frame(const State& s, const std::vector<ParticleElement>& extra) {
+  // Velocities and angular momenta, when the state carries them, are the per-particle elements
+  // `velocity` (H5MD's name) and `angular_momentum`, [F, N, 3] like any engine-specific element.
+  const Particles& p = s.particles;
+  if (!p.has_velocities() && !p.has_angular_momenta()) return append_elements(s, extra);
+  std::vector<ParticleElement> elements = extra;
+  std::vector<double> v, l;
+  if (p.has_velocities()) {
+    v = interleave(p.vx, p.vy, p.vz);
+    elements.push_back(ParticleElement{kVelocityElement, 3, v.data()});
+  }
+  if (p.has_angular_momenta()) {
+    l = interleave(p.lx, p.ly, p.lz);
+    elements.push_back(ParticleElement{kAngularMomentumElement, 3, l.data()});
+  }
+  append_elements(s, elements);
+}
+
+void H5mdWriter::append_elements(const State& s, const std::vector<ParticleElement>& extra) {
   QuietHdf5 quiet;
   Impl& m = *impl_;
   m.require_open();
@@ -879,7 +910,7 @@ static std::vector<std::string> extra_element_names(const FileReader& r) {
   std::vector<std::string> out;
   for (const auto& name : names) {
     if (name == "box" || name == "position" || name == "image" || name == "orientation" || name == "species" ||
-        name == "id" || name == "velocity" || name == "force")
+        name == "id" || name == "force")
       continue;
     if (r.exists(all + "/" + name + "/value")) out.push_back(name);
   }
@@ -1163,6 +1194,7 @@ State H5mdReader::read_frame(std::ptrdiff_t index) const {
   m.read_particle_row("species", frame, 0, H5T_NATIVE_INT32, p.species.data());
   p.id.resize(n);
   m.read_particle_row("id", frame, 0, H5T_NATIVE_INT64, p.id.data());
+  read_motion(p, frame);
 
   for (std::size_t i = 0; i < n; ++i) {
     if (p.species[i] < 0 || static_cast<std::size_t>(p.species[i]) >= s.species.size())
@@ -1236,6 +1268,30 @@ std::vector<double> H5mdReader::box_edges_frames() const {
 std::vector<std::string> H5mdReader::particle_element_names() const {
   QuietHdf5 quiet;
   return extra_element_names(*impl_);
+}
+
+void H5mdReader::read_motion(Particles& p, std::size_t frame) const {
+  auto read_vectors = [&](const char* name, std::vector<double>& a, std::vector<double>& b, std::vector<double>& c) {
+    std::size_t width = 0;
+    const std::vector<double> rows = read_particle_element(name, static_cast<std::ptrdiff_t>(frame), width);
+    if (width != 3)
+      impl_->bad(std::string("/particles/") + kParticleGroup + "/" + name + "/value",
+                 "expected 3 components per particle, got " + std::to_string(width));
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      a[i] = rows[3 * i];
+      b[i] = rows[3 * i + 1];
+      c[i] = rows[3 * i + 2];
+    }
+  };
+  auto stored = [&](const char* name) { return impl_->exists(std::string("/particles/") + kParticleGroup + "/" + name + "/value"); };
+  if (stored(kVelocityElement)) {
+    p.carry_velocities();
+    read_vectors(kVelocityElement, p.vx, p.vy, p.vz);
+  }
+  if (stored(kAngularMomentumElement)) {
+    p.carry_angular_momenta();
+    read_vectors(kAngularMomentumElement, p.lx, p.ly, p.lz);
+  }
 }
 
 std::vector<double> H5mdReader::read_particle_element(const std::string& name, std::ptrdiff_t index, std::size_t& width) const {

@@ -10,6 +10,8 @@
 //   /particles/all/orientation     {step, time, value [F,N,4]}  unit quaternion (w, x, y, z), body → lab
 //   /particles/all/species         {step, time, value [F,N]}    int32 index into /parameters/species
 //   /particles/all/id              {step, time, value [F,N]}    int64
+//   /particles/all/velocity        {step, time, value [F,N,3]}  only for states that carry velocities
+//   /particles/all/angular_momentum {step, time, value [F,N,3]} only for states that carry them (lab frame)
 //   /particles/all/<extra>         {step, time, value [F,N,W]}  float64, engine-specific per-particle
 //                                  data (e.g. DMC rotation vectors), see ParticleElement
 //   /observables/<name>            {step, time, value [R] or [R,W]}
@@ -38,6 +40,8 @@
 namespace anisodyn::io {
 
 inline constexpr const char* kParticleGroup = "all";
+inline constexpr const char* kVelocityElement = "velocity";
+inline constexpr const char* kAngularMomentumElement = "angular_momentum";
 
 struct H5mdHeader {
   std::string creator = "anisodyn";
@@ -69,8 +73,9 @@ class H5mdWriter {
   ~H5mdWriter();
 
   /// Appends one frame: step = s.step, time = s.time, box edges, positions (as stored: wrapped),
-  /// images, orientations (w, x, y, z), species and ids. The particle count is fixed by the first
-  /// frame; steps must not decrease.
+  /// images, orientations (w, x, y, z), species and ids, and velocities and angular momenta when
+  /// the state carries them. The particle count is fixed by the first frame; steps must not
+  /// decrease.
   void append_frame(const State& s);
   /// The same, plus extra per-particle elements; every frame must carry the same set of elements.
   void append_frame(const State& s, const std::vector<ParticleElement>& extra);
@@ -104,6 +109,7 @@ class H5mdWriter {
  private:
   struct Impl;
   explicit H5mdWriter(std::unique_ptr<Impl> impl);
+  void append_elements(const State& s, const std::vector<ParticleElement>& extra);
   std::unique_ptr<Impl> impl_;
 };
 
@@ -127,10 +133,12 @@ class H5mdReader {
   std::size_t frame_count() const;
   std::size_t particle_count() const;
   /// index < 0 counts from the end (-1 = last frame). Fills box, species table, particles
-  /// (positions, images, orientations, species, ids), step and time.
+  /// (positions, images, orientations, species, ids; velocities and angular momenta when the file
+  /// has them), step and time.
   State read_frame(std::ptrdiff_t index) const;
   std::vector<std::int64_t> frame_steps() const;
-  /// Names of the extra per-particle elements (see ParticleElement).
+  /// Names of the per-particle elements beyond position, image, orientation, species and id:
+  /// velocity and angular momentum when stored, and the extra elements (see ParticleElement).
   std::vector<std::string> particle_element_names() const;
   /// Row of an extra element at a frame: N × width values (width returned in `width`).
   std::vector<double> read_particle_element(const std::string& name, std::ptrdiff_t index, std::size_t& width) const;
@@ -169,6 +177,8 @@ class H5mdReader {
   std::optional<nlohmann::json> checkpoint() const;
 
  private:
+  /// Velocities and angular momenta of `frame` into p, for the elements the file has.
+  void read_motion(Particles& p, std::size_t frame) const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
