@@ -17,6 +17,7 @@ namespace anisodyn::analysis {
 
 using io::detail::Handle;
 using io::detail::QuietHdf5;
+using io::detail::WriteContext;
 
 Table& Table::add(std::string column, std::string units, std::string def, std::vector<double> values) {
   if (!columns.empty() && values.size() != rows())
@@ -51,50 +52,6 @@ std::string AnalysisOutput::csv_path(const std::string& table) const {
 }
 
 namespace {
-
-void check(herr_t rc, const std::string& what) {
-  if (rc < 0) throw RuntimeFailure("HDF5 error while writing " + what);
-}
-
-Handle string_type() {
-  hid_t t = H5Tcopy(H5T_C_S1);
-  H5Tset_size(t, H5T_VARIABLE);
-  H5Tset_cset(t, H5T_CSET_UTF8);
-  return Handle(t, H5Tclose);
-}
-
-void string_attribute(hid_t obj, const std::string& key, const std::string& value) {
-  Handle type = string_type();
-  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
-  Handle attr(H5Acreate2(obj, key.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
-  if (!attr.valid()) throw RuntimeFailure("HDF5 error while creating attribute " + key);
-  const char* p = value.c_str();
-  check(H5Awrite(attr.get(), type.get(), &p), "attribute " + key);
-}
-
-void string_dataset(hid_t parent, const std::string& name, const std::string& value) {
-  Handle type = string_type();
-  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
-  Handle ds(H5Dcreate2(parent, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
-  if (!ds.valid()) throw RuntimeFailure("HDF5 error while creating dataset " + name);
-  const char* p = value.c_str();
-  check(H5Dwrite(ds.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, &p), name);
-}
-
-Handle double_dataset(hid_t parent, const std::string& name, const std::vector<double>& values) {
-  const hsize_t n = values.size();
-  Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose);
-  Handle ds(H5Dcreate2(parent, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
-  if (!ds.valid()) throw RuntimeFailure("HDF5 error while creating dataset " + name);
-  if (n) check(H5Dwrite(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), name);
-  return ds;
-}
-
-Handle group(hid_t parent, const std::string& name) {
-  Handle g(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
-  if (!g.valid()) throw RuntimeFailure("HDF5 error while creating group " + name);
-  return g;
-}
 
 std::string csv_number(double v) {
   if (std::isnan(v)) return "nan";
@@ -147,33 +104,34 @@ void AnalysisOutput::write(bool csv) const {
     Handle file(H5Fcreate(outputs.back().partial_path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
     if (!file.valid()) throw RuntimeFailure("cannot create " + outputs.back().partial_path());
     const hid_t f = file.get();
-    string_attribute(f, "tool", provenance_.value("tool", std::string()));
-    string_attribute(f, "tool_version", std::string(kVersion) + " (" + kGitRevision + ")");
-    string_attribute(f, "git_revision", kGitRevision);
-    string_attribute(f, "created_utc", provenance_.value("created_utc", std::string()));
-    string_attribute(f, "inputs", provenance_.value("inputs", nlohmann::json::array()).dump());
-    if (!window_.is_null()) string_attribute(f, "window", window_.dump());
-    string_dataset(f, "parameters", parameters_.dump(2));
-    string_dataset(f, "provenance", provenance_.dump(2));
+    const WriteContext w(outputs.back().partial_path());
+    w.string_attribute(f, "tool", provenance_.value("tool", std::string()));
+    w.string_attribute(f, "tool_version", std::string(kVersion) + " (" + kGitRevision + ")");
+    w.string_attribute(f, "git_revision", kGitRevision);
+    w.string_attribute(f, "created_utc", provenance_.value("created_utc", std::string()));
+    w.string_attribute(f, "inputs", provenance_.value("inputs", nlohmann::json::array()).dump());
+    if (!window_.is_null()) w.string_attribute(f, "window", window_.dump());
+    w.string_dataset(f, "parameters", parameters_.dump(2));
+    w.string_dataset(f, "provenance", provenance_.dump(2));
     std::set<std::string> names;
     for (const auto& t : tables_) {
       if (!names.insert(t.name).second || t.name == "scalars") throw RuntimeFailure("duplicate table name " + t.name);
-      Handle g = group(f, t.name);
-      string_attribute(g.get(), "definition", t.definition);
+      Handle g = w.group(f, t.name);
+      w.string_attribute(g.get(), "definition", t.definition);
       for (const auto& c : t.columns) {
-        Handle ds = double_dataset(g.get(), c.name, c.values);
-        string_attribute(ds.get(), "units", c.units);
-        string_attribute(ds.get(), "definition", c.definition);
+        Handle ds = w.double_dataset(g.get(), c.name, c.values);
+        w.string_attribute(ds.get(), "units", c.units);
+        w.string_attribute(ds.get(), "definition", c.definition);
       }
     }
     if (!scalars_.empty()) {
-      Handle g = group(f, "scalars");
-      string_attribute(g.get(), "definition", "scalar results: value and standard error");
+      Handle g = w.group(f, "scalars");
+      w.string_attribute(g.get(), "definition", "scalar results: value and standard error");
       for (const auto& s : scalars_) {
-        Handle ds = double_dataset(g.get(), s.name, {s.value, s.error});
-        string_attribute(ds.get(), "units", s.units);
-        string_attribute(ds.get(), "definition", s.definition);
-        string_attribute(ds.get(), "details", s.details.dump());
+        Handle ds = w.double_dataset(g.get(), s.name, {s.value, s.error});
+        w.string_attribute(ds.get(), "units", s.units);
+        w.string_attribute(ds.get(), "definition", s.definition);
+        w.string_attribute(ds.get(), "details", s.details.dump());
       }
     }
     if (!file.close()) throw RuntimeFailure("cannot close " + outputs.back().partial_path());

@@ -21,14 +21,6 @@ void require(bool ok, const std::string& path, const std::string& what) {
   if (!ok) throw RuntimeFailure(path + ": HDF5 error while " + what);
 }
 
-void write_doubles(hid_t parent, const std::string& name, const std::vector<double>& values,
-                   const std::vector<hsize_t>& shape, const std::string& path) {
-  detail::Handle space(H5Screate_simple(static_cast<int>(shape.size()), shape.data(), nullptr), H5Sclose);
-  detail::Handle ds(H5Dcreate2(parent, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
-  require(ds.get() >= 0 && H5Dwrite(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) >= 0, path,
-          "writing " + name);
-}
-
 std::vector<double> flat(const nlohmann::json& j) {
   std::vector<double> out;
   if (j.is_array()) for (const auto& x : j) { auto v = flat(x); out.insert(out.end(), v.begin(), v.end()); }
@@ -38,14 +30,14 @@ std::vector<double> flat(const nlohmann::json& j) {
 
 /// Numeric mirror of one species entry for h5py users; the JSON document stays authoritative.
 void write_species_group(hid_t species_root, const nlohmann::json& s, const std::string& path) {
-  detail::Handle g(H5Gcreate2(species_root, s.at("name").get<std::string>().c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
-  require(g.get() >= 0, path, "creating the group of species " + s.at("name").get<std::string>());
-  write_doubles(g.get(), "D_trans", flat(s.at("D_trans")), {3}, path);
-  write_doubles(g.get(), "D_rot", flat(s.at("D_rot")), {3}, path);
+  const detail::WriteContext w(path);
+  detail::Handle g = w.group(species_root, s.at("name").get<std::string>());
+  w.double_dataset(g.get(), "D_trans", {3}, flat(s.at("D_trans")));
+  w.double_dataset(g.get(), "D_rot", {3}, flat(s.at("D_rot")));
   if (!s.contains("hydro")) return;
   const auto& h = s.at("hydro");
-  write_doubles(g.get(), "diffusion_tensor", flat(h.at("diffusion_tensor")), {6, 6}, path);
-  write_doubles(g.get(), "centre_of_diffusion", flat(h.at("centre_of_diffusion")), {3}, path);
+  w.double_dataset(g.get(), "diffusion_tensor", {6, 6}, flat(h.at("diffusion_tensor")));
+  w.double_dataset(g.get(), "centre_of_diffusion", {3}, flat(h.at("centre_of_diffusion")));
   const auto& shells = h.at("shells");
   std::vector<double> sigma, beads, dt, dr;
   for (const auto& sh : shells) {
@@ -55,10 +47,10 @@ void write_species_group(hid_t species_root, const nlohmann::json& s, const std:
     for (double x : flat(sh.at("D_rot"))) dr.push_back(x);
   }
   const auto n = static_cast<hsize_t>(shells.size());
-  write_doubles(g.get(), "shell_sigma_b", sigma, {n}, path);
-  write_doubles(g.get(), "shell_beads", beads, {n}, path);
-  write_doubles(g.get(), "shell_D_trans", dt, {n, 3}, path);
-  write_doubles(g.get(), "shell_D_rot", dr, {n, 3}, path);
+  w.double_dataset(g.get(), "shell_sigma_b", {n}, sigma);
+  w.double_dataset(g.get(), "shell_beads", {n}, beads);
+  w.double_dataset(g.get(), "shell_D_trans", {n, 3}, dt);
+  w.double_dataset(g.get(), "shell_D_rot", {n, 3}, dr);
 }
 
 void write_hdf5(const std::string& file, const nlohmann::json& doc) {
