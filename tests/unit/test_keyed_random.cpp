@@ -1,0 +1,146 @@
+// KeyedRandom (core/keyed_random.hpp): draws addressed by key and counter, the pair symmetry, the
+// same values for any thread count, and the distribution of the normals and uniforms against
+// their closed-form moments (tolerances 4 standard errors of each estimator) and a
+// Kolmogorov–Smirnov bound.
+#include <gtest/gtest.h>
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "anisodyn/core/keyed_random.hpp"
+
+using namespace anisodyn;
+
+TEST(KeyedRandom, ADrawDependsOnlyOnItsKeyAndCounter) {
+  const KeyedRandom r(2026, 1), same(2026, 1), other_purpose(2026, 2), other_seed(2027, 1);
+  std::vector<double> batch(11);
+  r.normals(5, 17, 3, batch.data(), batch.size());
+  for (std::uint64_t k = 0; k < batch.size(); ++k) {
+    EXPECT_EQ(batch[k], r.normal(5, 17, 3, k)) << k;
+    EXPECT_EQ(batch[k], same.normal(5, 17, 3, k)) << k;
+    EXPECT_NE(batch[k], other_purpose.normal(5, 17, 3, k)) << k;
+    EXPECT_NE(batch[k], other_seed.normal(5, 17, 3, k)) << k;
+  }
+  // Each counter word matters.
+  EXPECT_NE(r.normal(5, 17, 3, 0), r.normal(6, 17, 3, 0));
+  EXPECT_NE(r.normal(5, 17, 3, 0), r.normal(5, 18, 3, 0));
+  EXPECT_NE(r.normal(5, 17, 3, 0), r.normal(5, 17, 4, 0));
+  EXPECT_NE(r.normal(5, 17, 3, 0), r.normal(5, 17, 3, 4));
+  EXPECT_EQ(r.uniform(9, 1, 2, 6), r.uniform(9, 1, 2, 6));
+}
+
+TEST(KeyedRandom, PairDrawsAreSymmetric) {
+  const KeyedRandom r(7, 3);
+  for (std::uint64_t i = 0; i < 50; ++i)
+    for (std::uint64_t j = 0; j < 50; ++j) ASSERT_EQ(r.pair_normal(11, i, j), r.pair_normal(11, j, i));
+  EXPECT_NE(r.pair_normal(11, 1, 2), r.pair_normal(11, 1, 3));
+}
+
+TEST(KeyedRandom, ValuesDoNotDependOnTheThreadCount) {
+  // Pair noise of a pair list filled in parallel, in whatever order the threads take the pairs.
+  const KeyedRandom r(99, 5);
+  const std::int64_t pairs = 20000;
+  auto fill = [&](int threads) {
+    std::vector<double> theta(static_cast<std::size_t>(pairs));
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 7)
+    for (std::int64_t p = 0; p < pairs; ++p)
+      theta[static_cast<std::size_t>(p)] = r.pair_normal(42, static_cast<std::uint64_t>(p % 997), static_cast<std::uint64_t>(p / 997 + 1000));
+    return theta;
+  };
+  const auto one = fill(1);
+  EXPECT_EQ(one, fill(2));
+  EXPECT_EQ(one, fill(3));
+}
+
+namespace {
+
+struct Moments {
+  double mean = 0, var = 0, m4 = 0;
+};
+
+Moments moments(const std::vector<double>& x) {
+  Moments m;
+  for (double v : x) m.mean += v;
+  m.mean /= static_cast<double>(x.size());
+  for (double v : x) {
+    const double d = v - m.mean;
+    m.var += d * d;
+    m.m4 += d * d * d * d;
+  }
+  m.var /= static_cast<double>(x.size() - 1);
+  m.m4 /= static_cast<double>(x.size());
+  return m;
+}
+
+/// sup |F_n − F| for a sample against the cumulative distribution cdf.
+template <class Cdf>
+double ks_statistic(std::vector<double> x, Cdf cdf) {
+  std::sort(x.begin(), x.end());
+  const double n = static_cast<double>(x.size());
+  double d = 0.0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double f = cdf(x[i]);
+    d = std::max({d, f - static_cast<double>(i) / n, static_cast<double>(i + 1) / n - f});
+  }
+  return d;
+}
+
+double correlation(const std::vector<double>& a, const std::vector<double>& b) {
+  double s = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) s += a[i] * b[i];
+  return s / static_cast<double>(a.size());
+}
+
+}  // namespace
+
+TEST(KeyedRandom, NormalsHaveTheMomentsAndDistributionOfAStandardNormal) {
+  const KeyedRandom r(123456789, 7);
+  const std::size_t steps = 100000;
+  // Four draws per counter (one Philox block: both Box–Muller branches of two pairs).
+  std::vector<std::vector<double>> z(4, std::vector<double>(steps));
+  for (std::size_t s = 0; s < steps; ++s) {
+    double b[4];
+    r.normals(s, 12, 34, b, 4);
+    for (int k = 0; k < 4; ++k) z[static_cast<std::size_t>(k)][s] = b[k];
+  }
+  std::vector<double> all;
+  for (const auto& v : z) all.insert(all.end(), v.begin(), v.end());
+  const double n = static_cast<double>(all.size());
+  const Moments m = moments(all);
+  EXPECT_LT(std::abs(m.mean), 4.0 / std::sqrt(n));               // SE of the mean: 1/√n
+  EXPECT_LT(std::abs(m.var - 1.0), 4.0 * std::sqrt(2.0 / n));    // Var(z²) = 2
+  EXPECT_LT(std::abs(m.m4 - 3.0), 4.0 * std::sqrt(96.0 / n));    // Var(z⁴) = 105 − 9
+  // Kolmogorov–Smirnov: P(√n D > 1.95) ≈ 0.001.
+  EXPECT_LT(std::sqrt(n) * ks_statistic(all, [](double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }), 1.95);
+  // The cosine and sine branch of one pair, the two pairs of a block and neighbouring steps are
+  // uncorrelated (SE of a correlation of independent unit normals: 1/√steps).
+  const double se = 1.0 / std::sqrt(static_cast<double>(steps));
+  EXPECT_LT(std::abs(correlation(z[0], z[1])), 4.0 * se);
+  EXPECT_LT(std::abs(correlation(z[0], z[2])), 4.0 * se);
+  EXPECT_LT(std::abs(correlation(z[1], z[3])), 4.0 * se);
+  std::vector<double> next(z[0].begin() + 1, z[0].end()), prev(z[0].begin(), z[0].end() - 1);
+  EXPECT_LT(std::abs(correlation(prev, next)), 4.0 * se);
+  // Squares too: Box–Muller pairs share a radius, which a linear correlation would not see.
+  std::vector<double> a2(steps), b2(steps);
+  for (std::size_t s = 0; s < steps; ++s) {
+    a2[s] = z[0][s] * z[0][s] - 1.0;
+    b2[s] = z[1][s] * z[1][s] - 1.0;
+  }
+  EXPECT_LT(std::abs(correlation(a2, b2)), 4.0 * std::sqrt(2.0 * 2.0) * se);  // Var(z² − 1) = 2
+}
+
+TEST(KeyedRandom, UniformsAreUniform) {
+  const KeyedRandom r(5, 9);
+  std::vector<double> u;
+  for (std::uint64_t s = 0; s < 200000; ++s) u.push_back(r.uniform(s, 1, 2, s % 8));
+  const double n = static_cast<double>(u.size());
+  const Moments m = moments(u);
+  EXPECT_LT(std::abs(m.mean - 0.5), 4.0 * std::sqrt(1.0 / 12.0 / n));
+  EXPECT_LT(std::abs(m.var - 1.0 / 12.0), 4.0 * std::sqrt((1.0 / 80.0 - 1.0 / 144.0) / n));
+  EXPECT_LT(std::sqrt(n) * ks_statistic(u, [](double x) { return x; }), 1.95);
+  EXPECT_GE(*std::min_element(u.begin(), u.end()), 0.0);
+  EXPECT_LT(*std::max_element(u.begin(), u.end()), 1.0);
+}
