@@ -4,8 +4,6 @@
 // Kolmogorov–Smirnov bound.
 #include <gtest/gtest.h>
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <vector>
