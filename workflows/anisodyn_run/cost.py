@@ -4,12 +4,12 @@ The estimate is a plan, not a promise: compression phases count their max_cycles
 and the throughput depends on density and shape."""
 import math
 
-# Single-thread trial moves per second, bench/mc_throughput.cpp and bench/dmc_throughput.cpp,
-# measured 2026-11-22 (docs/performance.md).
+# Single-thread trial moves per second, bench/mc_throughput.cpp (2026-11-22) and
+# bench/dmc_throughput.cpp (2026-11-24, with skin lists; medians of three rounds, docs/performance.md).
 THROUGHPUT = {
     "mc": 9.57e5,          # 2000 boards 12×3.46×1, η = 0.20
-    "dmc": 5.5e5,          # 1000 boards + pulled tracer, φ = 0.20 (the slowest hard-core case)
-    "dmc_dipolar": 1.51e5,  # 1500 dipolar cubes with Ewald, field on
+    "dmc": 9.6e5,          # 2000 boards 12×1×1 + 200 spheres, η = 0.34 nematic (the slowest hard-core case)
+    "dmc_dipolar": 8.9e4,  # 1500 dipolar cubes with Ewald, field on
 }
 
 
