@@ -24,6 +24,7 @@ import time
 
 bin_dir, tmp, source = sys.argv[1], sys.argv[2], sys.argv[3]
 sys.path.insert(0, os.path.join(source, "workflows"))
+from anisodyn_run import cost  # noqa: E402
 from anisodyn_run.compare import differences  # noqa: E402
 
 shutil.rmtree(tmp, ignore_errors=True)
@@ -183,11 +184,13 @@ _, err = proc.communicate(timeout=120)
 check(proc.returncode == 130 and "run the same command again to resume" in err, f"SIGINT: exit 130 with a resume hint (got {proc.returncode})")
 check(last_run(interrupted)["interrupted"] >= 1, f"the interrupted job is recorded {last_run(interrupted)}")
 # the progress line after the first finished job (a configuration or hydro, in milliseconds) takes the ETA
-# of the 4 dmc jobs still to run from the cost model (4 x 150 particles x 40 000 cycles at 5.5e5 moves/s
-# on 1 worker = 44 s), not from the milliseconds
+# of the 4 dmc jobs still to run from the cost model (4 x 150 particles x 40 000 cycles at the model's
+# DMC rate on 1 worker), not from the milliseconds
+dmc_plan = 4 * 150 * 40000 / cost.THROUGHPUT["dmc"]
 first_done = re.search(r"done 1/11 .*ETA (\d+):(\d\d)\n", err)
 eta = int(first_done.group(1)) * 60 + int(first_done.group(2)) if first_done else None
-check(eta is not None and eta >= 40, f"ETA after the first finished job, before any engine job finished: {eta} s (>= 40)")
+check(eta is not None and eta >= int(dmc_plan),
+      f"ETA after the first finished job, before any engine job finished: {eta} s (>= the 4 dmc jobs' plan, {dmc_plan:.0f} s)")
 r = run(path, interrupted)
 check(r.returncode == 0, "the run after SIGINT finishes")
 same_outputs(os.path.join(ref, "spheres"), campaign, "interrupted by SIGINT and resumed vs uninterrupted")
