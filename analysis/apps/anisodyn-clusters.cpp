@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "anisodyn/analysis/dbscan.hpp"
+#include "anisodyn/geometry/body_axes.hpp"
 #include "anisodyn/analysis/dipolar_clusters.hpp"
 #include "anisodyn/analysis/nematic_clusters.hpp"
 #include "anisodyn/analysis/species_selection.hpp"
@@ -53,8 +54,7 @@ void run_nematic(StageRun& run) {
   run.each_replica(needs, [&](const Trajectory& t, std::size_t) { a.accumulate(t, sp.index); });
   const NematicClusterResult r = a.compute();
   const std::string rule = kNematicClusterRule;
-  const char* axis_name[3] = {"T", "W", "L"};
-  const nlohmann::json details = {{"rule_version", rule}, {"species", sp.name}, {"axis", axis_name[s.axis]},
+  const nlohmann::json details = {{"rule_version", rule}, {"species", sp.name}, {"axis", body_axis_name(s.axis)},
                                   {"K1", s.k1}, {"K2", s.k2}, {"K_par", s.k_par}, {"K_perp", s.k_perp},
                                   {"configurations", r.configurations}, {"error_samples", r.samples},
                                   {"error", run.inputs.size() > 1 ? "standard error over replicas" : "standard error over <= 10 blocks of configurations"},

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "anisodyn/analysis/rotation.hpp"
+#include "anisodyn/geometry/body_axes.hpp"
 #include "anisodyn/analysis/species_selection.hpp"
 #include "anisodyn/analysis/stage.hpp"
 
@@ -11,13 +12,12 @@ using namespace anisodyn::analysis;
 
 namespace {
 
-const char* kAxisNames[3] = {"T", "W", "L"};
 
 void write_results(StageRun& run, const SelectedSpecies& sp, const RotationResult& r) {
   Table& t = run.out.table("rotation_" + sp.name, "rotational statistics of species " + sp.name + " per body axis (spec 50 B1, B3)");
   t.add("time", "tau", "lag time t", r.lag);
   for (const auto& a : r.axes) {
-    const std::string n = kAxisNames[a.axis];
+    const std::string n = body_axis_name(a.axis);
     t.add("msad_" + n, "rad^2", "spec 50 B1: <|phi_" + n + "(t0+t) - phi_" + n + "(t0)|^2>, unbounded rotation vector of body axis " + n, a.msad);
     t.add("msad_" + n + "_se", "rad^2", "standard error of msad_" + n, a.msad_error);
     t.add("C1_" + n, "1", "spec 50 B3: <P_1(u_" + n + "(t0+t).u_" + n + "(t0))>", a.c1);
@@ -26,7 +26,7 @@ void write_results(StageRun& run, const SelectedSpecies& sp, const RotationResul
     t.add("C2_" + n + "_se", "1", "standard error of C2_" + n, a.c2_error);
   }
   for (const auto& a : r.axes) {
-    const std::string n = kAxisNames[a.axis];
+    const std::string n = body_axis_name(a.axis);
     const nlohmann::json source = {{"rotation_vectors", a.exact_rotation_vectors ? "exact (accumulated per move by the engine)" : "accumulated between frames"},
                                    {"frame_rotations_above_0.2_rad", a.violations}, {"frame_intervals", a.intervals}, {"samples", r.samples}};
     nlohmann::json msad_details = source;

@@ -1,4 +1,5 @@
 #include "anisodyn/analysis/active_microrheology.hpp"
+#include "anisodyn/io/body_axis_choice.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -15,11 +16,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr const char* kPathObservable = "tracer_position";
 
 int axis_letter_index(tool::ConfigNode& cfg, const std::string& key, const std::string& fallback) {
-  const std::string a = cfg.choice(key, {"T", "W", "L", "x", "y", "z", "none"}, fallback);
-  if (a == "T" || a == "x") return 0;
-  if (a == "W" || a == "y") return 1;
-  if (a == "L" || a == "z") return 2;
-  return -1;
+  return io::choose_body_axis(cfg, key, fallback, true, {"none"});
 }
 
 /// The box axis and sign of an axis-aligned direction; −1 if it is not along a box axis.

@@ -1,4 +1,5 @@
 #include "anisodyn/analysis/msd.hpp"
+#include "anisodyn/io/body_axis_choice.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -13,13 +14,7 @@ namespace anisodyn::analysis {
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-int body_axis_index(tool::ConfigNode& cfg, const std::string& key) {
-  const std::string a = cfg.choice(key, {"T", "W", "L", "x", "y", "z", "auto"}, "auto");
-  if (a == "T" || a == "x") return 0;
-  if (a == "W" || a == "y") return 1;
-  if (a == "L" || a == "z") return 2;
-  return -1;
-}
+int body_axis_index(tool::ConfigNode& cfg, const std::string& key) { return io::choose_body_axis(cfg, key, "auto", true, {"auto"}); }
 }  // namespace
 
 MsdSettings parse_msd_settings(tool::ConfigNode& cfg) {

@@ -1,4 +1,5 @@
 #include "anisodyn/analysis/nematic_clusters.hpp"
+#include "anisodyn/io/body_axis_choice.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -48,8 +49,7 @@ void check_nematic_cluster_settings(const NematicClusterSettings& s, const std::
 NematicClusterSettings parse_nematic_cluster_settings(tool::ConfigNode& cfg) {
   NematicClusterSettings s;
   s.species = cfg.string("species", "");
-  const std::string a = cfg.choice("axis", {"T", "W", "L"});
-  s.axis = a == "T" ? 0 : (a == "W" ? 1 : 2);
+  s.axis = io::require_body_axis(cfg, "axis", false);
   s.k1 = cfg.number("K1", s.k1);
   s.k2 = cfg.number("K2", s.k2);
   s.k_par = cfg.positive("K_par");

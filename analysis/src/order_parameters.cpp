@@ -1,4 +1,5 @@
 #include "anisodyn/analysis/order_parameters.hpp"
+#include "anisodyn/io/body_axis_choice.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -43,16 +44,10 @@ Vec3 any_perpendicular(const Vec3& n) {
 }  // namespace
 
 int parse_body_axis(tool::ConfigNode& cfg, const std::string& key, const std::string& fallback, bool allow_auto) {
-  std::vector<std::string> allowed{"T", "W", "L", "x", "y", "z"};
-  if (allow_auto) allowed.emplace_back("auto");
-  const std::string a = cfg.choice(key, allowed, fallback);
-  if (a == "T" || a == "x") return 0;
-  if (a == "W" || a == "y") return 1;
-  if (a == "L" || a == "z") return 2;
-  return -1;
+  return io::choose_body_axis(cfg, key, fallback, true, allow_auto ? std::vector<std::string>{"auto"} : std::vector<std::string>{});
 }
 
-const char* axis_letter(int k) { return k == 0 ? "T" : k == 1 ? "W" : k == 2 ? "L" : "auto"; }
+const char* axis_letter(int k) { return k >= 0 && k < 3 ? body_axis_name(k) : "auto"; }
 
 AxisOrder axis_order(const Mat3& q) {
   const UniaxialOrder u = uniaxial_order(q);

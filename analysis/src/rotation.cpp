@@ -1,4 +1,5 @@
 #include "anisodyn/analysis/rotation.hpp"
+#include "anisodyn/geometry/body_axes.hpp"
 
 #include <cmath>
 #include <limits>
@@ -12,10 +13,9 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 int axis_from_name(tool::ConfigNode& cfg, const std::string& name, const std::string& key) {
-  if (name == "T" || name == "x") return 0;
-  if (name == "W" || name == "y") return 1;
-  if (name == "L" || name == "z") return 2;
-  cfg.fail(key, "expected body axes from T, W, L (or x, y, z)");
+  const int k = body_axis_index(name);
+  if (k < 0) cfg.fail(key, "expected body axes from T, W, L (or x, y, z)");
+  return k;
 }
 }  // namespace
 

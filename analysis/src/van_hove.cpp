@@ -1,4 +1,5 @@
 #include "anisodyn/analysis/van_hove.hpp"
+#include "anisodyn/geometry/body_axes.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -64,10 +65,9 @@ VanHoveSettings parse_van_hove_settings(tool::ConfigNode& cfg) {
   s.bins = static_cast<std::size_t>(cfg.positive_integer("bins", 500));
   if (cfg.has("angular_axes"))
     for (const auto& a : cfg.strings("angular_axes")) {
-      if (a == "T") s.angular_axes.push_back(0);
-      else if (a == "W") s.angular_axes.push_back(1);
-      else if (a == "L") s.angular_axes.push_back(2);
-      else cfg.fail("angular_axes", "expected body axes from T, W, L");
+      const int k = body_axis_index(a, false);
+      if (k < 0) cfg.fail("angular_axes", "expected body axes from T, W, L");
+      s.angular_axes.push_back(k);
     }
   s.angular_bin_width = cfg.positive("angular_bin_width", s.angular_bin_width);
   s.angular_dimension = static_cast<int>(cfg.positive_integer("angular_dimension", 2));

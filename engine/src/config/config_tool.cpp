@@ -1,4 +1,5 @@
 #include "anisodyn/config/config_tool.hpp"
+#include "anisodyn/io/body_axis_choice.hpp"
 
 #include <map>
 
@@ -19,8 +20,8 @@ OrientationRule parse_orientation(std::optional<tool::ConfigNode> node, const Sh
                                                                                    : OrientationRule::Mode::Random;
   for (const char* key : {"axis", "director", "random_azimuth"})
     node->reject_unless(rule.mode == OrientationRule::Mode::Aligned, key, "with random orientations (it shapes an aligned start)");
-  const std::string axis = node->choice("axis", {"auto", "T", "W", "L"}, "auto");
-  if (axis != "auto") rule.body_axis = axis == "T" ? 0 : axis == "W" ? 1 : 2;
+  const int axis = io::choose_body_axis(*node, "axis", "auto", false, {"auto"});
+  if (axis >= 0) rule.body_axis = axis;
   rule.director = node->vec3("director", Vec3::UnitZ());
   if (rule.director.norm() == 0.0) node->fail("director", "a non-zero direction");
   rule.random_azimuth = node->boolean("random_azimuth", false);

@@ -1,4 +1,5 @@
 #include "anisodyn/mc/protocol.hpp"
+#include "anisodyn/geometry/body_axes.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -22,8 +23,6 @@ const char* type_name(McPhase::Type t) {
   }
   return "?";
 }
-
-const char* kAxisNames[3] = {"T", "W", "L"};
 
 std::string format_mean_error(const nlohmann::json& stats) {
   char buf[64];
@@ -240,7 +239,7 @@ void McRunner::summarise_phase(const McPhase& phase, std::int64_t first_step) {
     for (std::size_t k = 0; k < 3; ++k) {
       auto st = stats(column("order_" + sp.name, k));
       nematic = nematic || st["mean"].get<double>() > kNematicThreshold;
-      js["order"][sp.name][kAxisNames[k]] = st;
+      js["order"][sp.name][body_axis_name(k)] = st;
     }
     std::size_t n = 0;
     for (auto s : state_.particles.species) n += (state_.species[static_cast<std::size_t>(s)].name == sp.name);

@@ -1,4 +1,5 @@
 #include "anisodyn/mc/protocol_config.hpp"
+#include "anisodyn/io/body_axis_choice.hpp"
 
 #include <initializer_list>
 #include <string>
@@ -66,8 +67,7 @@ McPhase parse_phase(tool::ConfigNode n, std::size_t index) {
 OrientationalField parse_orientational_field(tool::ConfigNode n) {
   OrientationalField f;
   f.strength = n.number("strength");
-  const std::string axis = n.choice("axis", {"T", "W", "L"}, "W");
-  f.body_axis = axis == "T" ? 0 : axis == "W" ? 1 : 2;
+  f.body_axis = io::choose_body_axis(n, "axis", "W", false);
   const Vec3 d = n.vec3("direction", Vec3::UnitX());
   if (d.norm() == 0.0) n.fail("direction", "expected a non-zero direction vector");
   f.direction = d.normalized();
