@@ -4,6 +4,7 @@
 #include <hdf5.h>
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -20,6 +21,16 @@ namespace anisodyn::io {
 using namespace detail;
 using namespace h5md_layout;
 using nlohmann::json;
+
+namespace {
+/// Row-major rows of width columns.size() into one array per column (each resized to n).
+template <class T, std::size_t W>
+void split_columns(const T* rows, std::size_t n, const std::array<std::vector<T>*, W>& columns) {
+  for (auto* c : columns) c->resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t k = 0; k < W; ++k) (*columns[k])[i] = rows[W * i + k];
+}
+}  // namespace
 
 // =====================================================================================================
 // Reader
@@ -164,28 +175,12 @@ State H5mdReader::read_frame(std::ptrdiff_t index) const {
   Particles& p = s.particles;
   std::vector<double> buf(n * 4);
   m.read_particle_row("position", frame, 3, H5T_NATIVE_DOUBLE, buf.data());
-  p.x.resize(n); p.y.resize(n); p.z.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    p.x[i] = buf[3 * i];
-    p.y[i] = buf[3 * i + 1];
-    p.z[i] = buf[3 * i + 2];
-  }
+  split_columns<double, 3>(buf.data(), n, {&p.x, &p.y, &p.z});
   std::vector<std::int32_t> ibuf(n * 3);
   m.read_particle_row("image", frame, 3, H5T_NATIVE_INT32, ibuf.data());
-  p.ix.resize(n); p.iy.resize(n); p.iz.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    p.ix[i] = ibuf[3 * i];
-    p.iy[i] = ibuf[3 * i + 1];
-    p.iz[i] = ibuf[3 * i + 2];
-  }
+  split_columns<std::int32_t, 3>(ibuf.data(), n, {&p.ix, &p.iy, &p.iz});
   m.read_particle_row("orientation", frame, 4, H5T_NATIVE_DOUBLE, buf.data());
-  p.qw.resize(n); p.qx.resize(n); p.qy.resize(n); p.qz.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    p.qw[i] = buf[4 * i];
-    p.qx[i] = buf[4 * i + 1];
-    p.qy[i] = buf[4 * i + 2];
-    p.qz[i] = buf[4 * i + 3];
-  }
+  split_columns<double, 4>(buf.data(), n, {&p.qw, &p.qx, &p.qy, &p.qz});
   p.species.resize(n);
   m.read_particle_row("species", frame, 0, H5T_NATIVE_INT32, p.species.data());
   p.id.resize(n);
@@ -273,11 +268,7 @@ void H5mdReader::read_motion(Particles& p, std::size_t frame) const {
     if (width != 3)
       impl_->bad(std::string("/particles/") + kParticleGroup + "/" + name + "/value",
                  "expected 3 components per particle, got " + std::to_string(width));
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      a[i] = rows[3 * i];
-      b[i] = rows[3 * i + 1];
-      c[i] = rows[3 * i + 2];
-    }
+    split_columns<double, 3>(rows.data(), p.size(), {&a, &b, &c});
   };
   auto stored = [&](const char* name) { return impl_->exists(std::string("/particles/") + kParticleGroup + "/" + name + "/value"); };
   if (stored(kVelocityElement)) {
