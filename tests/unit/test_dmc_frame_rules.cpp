@@ -36,37 +36,37 @@ DmcProtocol parse(const nlohmann::json& frames) {
 
 TEST(DmcFrameRules, LogCyclesAfterEachSwitchMatchTheDefinition) {
   for (double per_decade : {5.0, 10.0, 2.5}) {
-    FrameRules f;
-    f.log_cycles_per_decade = per_decade;
+    run::FrameRules f;
+    f.log_steps_per_decade = per_decade;
     const auto expected = log_cycles(per_decade, 100000);
     for (std::int64_t since = 0; since <= 100000; ++since)
-      ASSERT_EQ(f.log_cycle_due(since), expected.count(since) > 0) << "per_decade " << per_decade << ", cycle " << since;
+      ASSERT_EQ(f.log_step_due(since), expected.count(since) > 0) << "per_decade " << per_decade << ", cycle " << since;
   }
   // 5 per decade, written out: 1, 2, 3, 4, 6, 10, 16, 25, 40, 63, 100 cycles after the switch
-  FrameRules f;
-  f.log_cycles_per_decade = 5;
+  run::FrameRules f;
+  f.log_steps_per_decade = 5;
   std::vector<std::int64_t> due;
   for (std::int64_t since = 0; since <= 100; ++since)
-    if (f.log_cycle_due(since)) due.push_back(since);
+    if (f.log_step_due(since)) due.push_back(since);
   EXPECT_EQ(due, (std::vector<std::int64_t>{0, 1, 2, 3, 4, 6, 10, 16, 25, 40, 63, 100}));
 }
 
 TEST(DmcFrameRules, LogCyclesRestartEveryBlock) {
-  FrameRules f;
-  f.log_cycles_per_decade = 5;
-  f.log_cycles_restart = 50;
+  run::FrameRules f;
+  f.log_steps_per_decade = 5;
+  f.log_steps_restart = 50;
   const auto block = log_cycles(5, 49);
-  for (std::int64_t since = 0; since < 1000; ++since) EXPECT_EQ(f.log_cycle_due(since), block.count(since % 50) > 0) << since;
-  FrameRules off;  // the rule is off by default
-  for (std::int64_t since = 0; since < 100; ++since) EXPECT_FALSE(off.log_cycle_due(since));
+  for (std::int64_t since = 0; since < 1000; ++since) EXPECT_EQ(f.log_step_due(since), block.count(since % 50) > 0) << since;
+  run::FrameRules off;  // the rule is off by default
+  for (std::int64_t since = 0; since < 100; ++since) EXPECT_FALSE(off.log_step_due(since));
 }
 
 TEST(DmcFrameRules, LogCyclesAreParsedAndBadValuesNamed) {
   const DmcProtocol p = parse({{"every_cycles", 500}, {"log_cycles", {{"per_decade", 5}, {"restart_every", 2500}}}});
-  EXPECT_EQ(p.frames.every_cycles, 500);
-  EXPECT_EQ(p.frames.log_cycles_per_decade, 5.0);
-  EXPECT_EQ(p.frames.log_cycles_restart, 2500);
-  EXPECT_EQ(parse({{"log_cycles", {{"per_decade", 4}}}}).frames.log_cycles_restart, 0);
+  EXPECT_EQ(p.frames.every_steps, 500);
+  EXPECT_EQ(p.frames.log_steps_per_decade, 5.0);
+  EXPECT_EQ(p.frames.log_steps_restart, 2500);
+  EXPECT_EQ(parse({{"log_cycles", {{"per_decade", 4}}}}).frames.log_steps_restart, 0);
   EXPECT_EQ(input_error([] { parse({{"log_cycles", {{"per_decade", 0}}}}); }).json_path(), "frames.log_cycles.per_decade");
   EXPECT_EQ(input_error([] { parse({{"log_cycles", {{"per_decade", 5}, {"restart_every", 0}}}}); }).json_path(),
             "frames.log_cycles.restart_every");

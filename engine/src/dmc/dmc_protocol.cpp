@@ -11,12 +11,6 @@ namespace anisodyn {
 
 namespace {
 
-std::string format_number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
-
 int parse_axis_letter(tool::ConfigNode& node, const std::string& key, const std::string& letters, int fallback) {
   if (!node.has(key)) return fallback;
   const std::string v = node.string(key);
@@ -44,97 +38,7 @@ DmcMoveOptions parse_moves(std::optional<tool::ConfigNode> node) {
   return m;
 }
 
-FieldSegment parse_segment(tool::ConfigNode& seg) {
-  FieldSegment s;
-  s.field_on = seg.choice("field", {"on", "off"}) == "on";
-  if (seg.has("cycles") == seg.has("time")) seg.fail("", "expected exactly one of 'cycles' or 'time' (Brownian time) for the segment's length");
-  if (seg.has("cycles")) {
-    s.unit = FieldSegment::Unit::Cycles;
-    s.length = static_cast<double>(seg.positive_integer("cycles"));
-  } else {
-    s.unit = FieldSegment::Unit::Time;
-    s.length = seg.positive("time");
-  }
-  return s;
-}
-
-/// `switches` (absolute instants, strictly increasing, one unit) → segments; the run's end comes
-/// from `cycles` or `time` at the top level.
-std::vector<FieldSegment> parse_switches(tool::ConfigNode& schedule, bool initially_on, const FieldSegment& end) {
-  std::vector<FieldSegment> out;
-  bool on = initially_on;
-  double last = 0.0;
-  std::optional<FieldSegment::Unit> unit;
-  auto nodes = schedule.objects("switches");
-  for (std::size_t k = 0; k < nodes.size(); ++k) {
-    auto& sw = nodes[k];
-    if (sw.has("cycle") == sw.has("time")) sw.fail("", "expected exactly one of 'cycle' or 'time' (the switch instant)");
-    const FieldSegment::Unit u = sw.has("cycle") ? FieldSegment::Unit::Cycles : FieldSegment::Unit::Time;
-    const double at = sw.has("cycle") ? static_cast<double>(sw.positive_integer("cycle")) : sw.positive("time");
-    if (unit && *unit != u) sw.fail("", "expected every switch in the same unit (all 'cycle' or all 'time')");
-    unit = u;
-    if (at <= last) sw.fail(sw.has("cycle") ? "cycle" : "time", "expected switch instants in increasing order (after " + format_number(last) + ")");
-    const bool next = sw.choice("field", {"on", "off"}) == "on";
-    out.push_back(FieldSegment{on, u, true, at});
-    on = next;
-    last = at;
-  }
-  if (unit && end.unit == *unit && end.length <= last)
-    schedule.fail("switches", "expected every switch before the end of the run (" + format_number(end.length) + ")");
-  FieldSegment tail = end;
-  tail.field_on = on;
-  tail.absolute = true;
-  out.push_back(tail);
-  return out;
-}
-
-void parse_field(tool::ConfigNode& cfg, DmcProtocol& p, bool& initially_on) {
-  initially_on = false;
-  auto field = cfg.optional_object("field");
-  if (!field) return;
-  const Vec3 dir = field->vec3("direction", Vec3::UnitX());
-  if (!(dir.norm() > 0.0)) field->fail("direction", "expected a non-zero vector");
-  p.field.direction = dir.normalized();
-  initially_on = field->choice("initially", {"on", "off"}, "off") == "on";
-  p.check_field_direction = field->boolean("check_direction", true);
-  if (!field->has("orientational") && !field->has("dipoles"))
-    field->fail("", "an 'orientational' field or 'dipoles' (a field block with neither has no effect)");
-  field->reject_unless(field->has("orientational"), "check_direction",
-                       "without an orientational field (it turns the field perpendicular to the nematic director)");
-  if (auto o = field->optional_object("orientational")) {
-    p.field.strength = o->positive("strength");
-    p.field.body_axis = parse_axis_letter(*o, "axis", "TWL", 1);
-  }
-  if (auto d = field->optional_object("dipoles")) {
-    p.dipole_gamma = d->positive("gamma");
-    p.dipole_species = d->strings("species");
-    if (p.dipole_species.empty()) d->fail("species", "expected at least one species name");
-    p.ewald_minimum_image_only = d->boolean("minimum_image_only", false);
-    d->reject_unless(!p.ewald_minimum_image_only, "accuracy",
-                     "with minimum_image_only (the truncated sum to L/2 has no Ewald parameters to choose)");
-    p.ewald_accuracy = d->positive("accuracy", 1e-5);
-    if (p.ewald_accuracy >= 0.1) d->fail("accuracy", "expected a relative accuracy below 0.1 (default 1e-5)");
-  }
-}
-
-/// With schedule.segments the first segment says whether the field starts on.
-void field_initially_has_no_effect(tool::ConfigNode& cfg) {
-  if (auto field = cfg.optional_object("field"))
-    field->reject_unless(false, "initially", "with schedule.segments (the first segment's 'field' says how the run starts)");
-}
-
 }  // namespace
-
-bool FrameRules::log_cycle_due(std::int64_t since_switch) const {
-  if (!(log_cycles_per_decade > 0.0) || since_switch < 0) return false;
-  const std::int64_t m = log_cycles_restart > 0 ? since_switch % log_cycles_restart : since_switch;
-  if (m == 0) return true;
-  // m is on the grid if round(10^(k/n)) = m for the k nearest n·log10(m)
-  const double x = log_cycles_per_decade * std::log10(static_cast<double>(m));
-  for (auto k = static_cast<std::int64_t>(std::floor(x)) - 1; k <= static_cast<std::int64_t>(std::ceil(x)) + 1; ++k)
-    if (k >= 0 && std::llround(std::pow(10.0, static_cast<double>(k) / log_cycles_per_decade)) == m) return true;
-  return false;
-}
 
 DmcProtocol parse_dmc_protocol(tool::ConfigNode& cfg) {
   DmcProtocol p;
@@ -178,34 +82,10 @@ DmcProtocol parse_dmc_protocol(tool::ConfigNode& cfg) {
     }
   }
 
-  bool initially_on = false;
-  parse_field(cfg, p, initially_on);
-
-  // Run length: `cycles` or `time`, or the schedule's segments.
-  auto schedule = cfg.optional_object("schedule");
-  const bool has_segments = schedule && schedule->has("segments");
-  if (has_segments) {
-    if (cfg.has("cycles") || cfg.has("time"))
-      cfg.fail(cfg.has("cycles") ? "cycles" : "time", "expected no run length when schedule.segments gives it");
-    field_initially_has_no_effect(cfg);
-    const std::int64_t repeat = schedule->positive_integer("repeat", 1);
-    std::vector<FieldSegment> once;
-    for (auto& seg : schedule->objects("segments")) once.push_back(parse_segment(seg));
-    if (once.empty()) schedule->fail("segments", "expected at least one segment");
-    for (std::int64_t r = 0; r < repeat; ++r) p.segments.insert(p.segments.end(), once.begin(), once.end());
-    if (schedule->has("switches")) schedule->fail("switches", "expected either 'segments' or 'switches', not both");
-  } else {
-    if (cfg.has("cycles") == cfg.has("time"))
-      cfg.fail("cycles", "expected exactly one run length: 'cycles' or 'time' (Brownian time, τ)");
-    FieldSegment end;
-    if (cfg.has("cycles")) end = FieldSegment{initially_on, FieldSegment::Unit::Cycles, true, static_cast<double>(cfg.positive_integer("cycles"))};
-    else end = FieldSegment{initially_on, FieldSegment::Unit::Time, true, cfg.positive("time")};
-    if (schedule) schedule->reject_unless(false, "repeat", "without schedule.segments (it repeats their list)");
-    if (schedule && schedule->has("switches")) p.segments = parse_switches(*schedule, initially_on, end);
-    else p.segments = {end};
-  }
+  p.field = run::parse_field_config(cfg, run::FieldUse::Switchable);
+  p.segments = run::parse_schedule(cfg, run::StepUnit::cycles(), p.field.initially_on);
   for (const auto& s : p.segments)
-    if (s.field_on && p.field.strength == 0.0 && p.dipole_gamma == 0.0)
+    if (s.field_on && !p.field.any())
       cfg.fail("field", "expected an orientational field or dipoles, since the schedule switches the field on");
 
   if (auto t = cfg.optional_object("tracer")) {
@@ -228,22 +108,7 @@ DmcProtocol parse_dmc_protocol(tool::ConfigNode& cfg) {
     p.tracer = ts;
   }
 
-  if (auto f = cfg.optional_object("frames")) {
-    p.frames.every_cycles = f->non_negative_integer("every_cycles", 0);
-    p.frames.every_time = f->non_negative("every_time", 0.0);
-    if (f->has("log_per_decade") || f->has("log_first_time")) {
-      p.frames.log_per_decade = f->positive("log_per_decade");
-      p.frames.log_first_time = f->positive("log_first_time");
-    }
-    if (auto a = f->optional_object("after_switch")) {
-      p.frames.after_switch_every = a->positive_integer("every_cycles");
-      p.frames.after_switch_for = a->positive_integer("for_cycles");
-    }
-    if (auto l = f->optional_object("log_cycles")) {
-      p.frames.log_cycles_per_decade = l->positive("per_decade");
-      if (l->has("restart_every")) p.frames.log_cycles_restart = l->positive_integer("restart_every");
-    }
-  }
+  p.frames = run::parse_frame_rules(cfg, run::StepUnit::cycles());
   p.observe_every = cfg.positive_integer("observe_every", 1);
 
   if (auto sp = cfg.optional_object("species")) {
@@ -288,7 +153,9 @@ void check_protocol_species(const DmcProtocol& p, const State& state, const std:
   for (const auto& [name, dt] : p.time_steps) require(name, "time_step." + name);
   if (!p.reference.empty()) require(p.reference, "balance.reference");
   if (!p.clock.empty()) require(p.clock, "balance.clock");
-  for (std::size_t k = 0; k < p.dipole_species.size(); ++k) require(p.dipole_species[k], "field.dipoles.species[" + std::to_string(k) + "]");
+  if (p.field.dipoles)
+    for (std::size_t k = 0; k < p.field.dipoles->species.size(); ++k)
+      require(p.field.dipoles->species[k], "field.dipoles.species[" + std::to_string(k) + "]");
   for (const auto& [name, d] : p.diffusion) require(name, "species." + name);
   // Keys that only act on some inputs.
   auto has_effect_nowhere = [&](const std::string& path, const std::string& why) {

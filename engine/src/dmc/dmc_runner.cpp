@@ -32,6 +32,10 @@ std::vector<std::size_t> species_counts(const State& s) {
   return n;
 }
 
+run::ProductionSettings production_settings(const DmcProtocol& p) {
+  return {p.segments, p.frames, p.observe_every, run::StepUnit::cycles(), "dmc production"};
+}
+
 /// Relative validity parameter of the pulled-tracer scheme above which results drift (spec 10 §4.5).
 constexpr double kTracerValidityLimit = 0.2;
 }  // namespace
@@ -48,8 +52,10 @@ DmcRunner::DmcRunner(State& state, const DmcProtocol& protocol, const std::strin
       config_file_(config_file),
       quiet_(quiet),
       engine_((check_protocol_species(protocol, state, config_file), state), RngState{protocol.seed, protocol.replica, 0, 4},
-              protocol.moves) {
+              protocol.moves),
+      production_(state, *this, production_settings(protocol), quiet) {
   configure_species();
+  configure_fields();
 }
 
 void DmcRunner::configure_species() {
@@ -122,26 +128,6 @@ void DmcRunner::configure_species() {
   balance_ = std::make_unique<TimeBalance>(b);
   engine_.set_time_steps(dt_);
 
-  // Fields.
-  engine_.set_orientational_field(protocol_.field);
-  if (protocol_.dipole_gamma > 0.0) {
-    DipoleSettings d;
-    d.gamma = protocol_.dipole_gamma;
-    d.species_carries.assign(ns, 0);
-    std::size_t n_dipoles = 0;
-    for (const auto& name : protocol_.dipole_species) d.species_carries[static_cast<std::size_t>(species_index(name))] = 1;
-    for (auto sp : state_.particles.species) n_dipoles += d.species_carries[static_cast<std::size_t>(sp)] ? 1 : 0;
-    try {
-      d.ewald = choose_ewald_parameters(state_.box.edges(), n_dipoles, protocol_.ewald_accuracy);
-    } catch (const InputError& e) {
-      throw InputError(config_file_, "field.dipoles.accuracy", e.what());
-    }
-    d.ewald.minimum_image_only = protocol_.ewald_minimum_image_only;
-    engine_.set_dipoles(d, protocol_.field.direction);
-    summary_["ewald"] = {{"kappa", d.ewald.kappa}, {"r_cut", d.ewald.r_cut}, {"n_max", d.ewald.n_max},
-                         {"minimum_image_only", d.ewald.minimum_image_only}};
-    if (d.ewald.minimum_image_only) summary_["warnings"].push_back("dipoles by a truncated minimum-image sum (smoke-test option, not for production)");
-  }
   preliminary_totals_.assign(ns, TrialCounts{});
   production_totals_.assign(ns, TrialCounts{});
   window_.assign(ns, TrialCounts{});
@@ -149,7 +135,29 @@ void DmcRunner::configure_species() {
   production_balance_.clear(ns);
 }
 
-void DmcRunner::run_preliminary(const std::function<void()>& tick) {
+void DmcRunner::configure_fields() {
+  engine_.set_orientational_field(protocol_.field.orientational);
+  if (const auto& dipoles = protocol_.field.dipoles) {
+    DipoleSettings d;
+    d.gamma = dipoles->gamma;
+    d.species_carries.assign(state_.species.size(), 0);
+    std::size_t n_dipoles = 0;
+    for (const auto& name : dipoles->species) d.species_carries[static_cast<std::size_t>(species_index(name))] = 1;
+    for (auto sp : state_.particles.species) n_dipoles += d.species_carries[static_cast<std::size_t>(sp)] ? 1 : 0;
+    try {
+      d.ewald = choose_ewald_parameters(state_.box.edges(), n_dipoles, dipoles->accuracy);
+    } catch (const InputError& e) {
+      throw InputError(config_file_, "field.dipoles.accuracy", e.what());
+    }
+    d.ewald.minimum_image_only = dipoles->minimum_image_only;
+    engine_.set_dipoles(d, protocol_.field.orientational.direction);
+    summary_["ewald"] = {{"kappa", d.ewald.kappa}, {"r_cut", d.ewald.r_cut}, {"n_max", d.ewald.n_max},
+                         {"minimum_image_only", d.ewald.minimum_image_only}};
+    if (d.ewald.minimum_image_only) summary_["warnings"].push_back("dipoles by a truncated minimum-image sum (smoke-test option, not for production)");
+  }
+}
+
+void DmcRunner::run_preliminary(run::CheckpointClock& checkpoints) {
   const bool needed = protocol_.balance == BalanceMode::Equilibrium && protocol_.preliminary_cycles > 0 &&
                       (state_.species.size() > 1 || tracer_species_ >= 0);
   if (!needed) return;
@@ -160,8 +168,8 @@ void DmcRunner::run_preliminary(const std::function<void()>& tick) {
       engine_.cycle();
       for (std::size_t s = 0; s < preliminary_totals_.size(); ++s) preliminary_totals_[s].add(engine_.last_cycle()[s]);
       ++cursor_.preliminary_cycle;
-      progress.update(cursor_.preliminary_iteration * protocol_.preliminary_cycles + cursor_.preliminary_cycle);
-      tick();
+      progress.update(preliminary_cycles_done());
+      checkpoints.tick(preliminary_cycles_done(), "preliminary cycle " + std::to_string(cursor_.preliminary_cycle));
     }
     const std::vector<double> next = balance_->balanced_steps(preliminary_totals_, dt_);
     double change = 0.0;
@@ -183,87 +191,42 @@ void DmcRunner::run_preliminary(const std::function<void()>& tick) {
   progress.finish();
 }
 
+std::int64_t DmcRunner::preliminary_cycles_done() const {
+  return cursor_.preliminary_iteration * protocol_.preliminary_cycles + cursor_.preliminary_cycle;
+}
+
 void DmcRunner::run(io::H5mdWriter& out, std::int64_t checkpoint_every, const std::function<void()>& checkpoint) {
   // Checkpoint instants follow the cycle count (preliminary + production), so a resumed run keeps
   // the cadence of the original one.
-  auto tick = [&] {
-    if (interrupt_requested()) {
-      checkpoint();
-      throw Interrupted("checkpoint written at " + std::string(cursor_.production ? "production" : "preliminary") +
-                        " cycle " + std::to_string(cursor_.production ? cursor_.cycle : cursor_.preliminary_cycle) +
-                        "; run again to resume");
-    }
-    const std::int64_t done = cursor_.preliminary_iteration * protocol_.preliminary_cycles + cursor_.preliminary_cycle + cursor_.cycle;
-    if (checkpoint_every > 0 && done % checkpoint_every == 0) checkpoint();
-  };
+  run::CheckpointClock checkpoints(checkpoint_every, checkpoint);
   if (!cursor_.production) {
-    run_preliminary(tick);
+    run_preliminary(checkpoints);
     // The smoothed acceptance estimates of few-particle species start from the preliminary run.
     balance_->seed(preliminary_totals_);
     // Displacements and rotations count from production's t = 0, which the summary's drift divides by.
     engine_.reset_accumulators();
     cursor_.production = true;
   }
-  if (engine_.tracer().active()) {
-    const double validity = engine_.tracer().beta_force * engine_.tracer_parallel_step();
-    summary_["tracer_validity"] = validity;
-    if (validity > kTracerValidityLimit) {
-      const std::string w = "pulled tracer: βF·δx_par = " + std::to_string(validity) + " exceeds " +
-                            std::to_string(kTracerValidityLimit) + "; the DMC time mapping needs βF·δx ≪ 1 (use a smaller time step)";
-      if (std::find(summary_["warnings"].begin(), summary_["warnings"].end(), w) == summary_["warnings"].end())
-        summary_["warnings"].push_back(w);
-      std::fprintf(stderr, "anisodyn-dmc: warning: %s\n", w.c_str());
-    }
-  }
-  Progress progress("dmc production (per mille of the schedule)", 1000, quiet_);
-  if (!cursor_.segment_started) start_segment(out);
-  while (true) {
-    if (segment_done()) {
-      if (cursor_.segment + 1 >= protocol_.segments.size()) break;
-      ++cursor_.segment;
-      cursor_.segment_started = false;
-      start_segment(out);
-    }
-    production_cycle(out);
-    char detail[96];
-    std::snprintf(detail, sizeof detail, "t=%.4g field=%s", cursor_.time, engine_.field_on() ? "on" : "off");
-    progress.update(static_cast<std::int64_t>(1000.0 * schedule_fraction()), detail);
-    tick();
-  }
-  if (window_cycles_ > 0) observe(out);
-  if (cursor_.last_frame_cycle != cursor_.cycle) write_frame(out);
-  progress.finish();
+  warn_about_tracer_validity();
+  production_.run(out, checkpoints, preliminary_cycles_done());
   finish_summary();
 }
 
-void DmcRunner::start_segment(io::H5mdWriter& out) {
-  const FieldSegment& seg = protocol_.segments[cursor_.segment];
-  const double now = seg.unit == FieldSegment::Unit::Cycles ? static_cast<double>(cursor_.cycle) : cursor_.time;
-  cursor_.segment_start = now;
-  cursor_.segment_end = seg.absolute ? seg.length : now + seg.length;
-  const bool first = cursor_.segment == 0;
-  if (first || seg.field_on != engine_.field_on()) switch_field(out, seg.field_on);
-  if (first && cursor_.cycle == 0) write_frame(out);
-  cursor_.segment_started = true;
+void DmcRunner::warn_about_tracer_validity() {
+  if (!engine_.tracer().active()) return;
+  const double validity = engine_.tracer().beta_force * engine_.tracer_parallel_step();
+  summary_["tracer_validity"] = validity;
+  if (validity <= kTracerValidityLimit) return;
+  const std::string w = "pulled tracer: βF·δx_par = " + std::to_string(validity) + " exceeds " +
+                        std::to_string(kTracerValidityLimit) + "; the DMC time mapping needs βF·δx ≪ 1 (use a smaller time step)";
+  if (std::find(summary_["warnings"].begin(), summary_["warnings"].end(), w) == summary_["warnings"].end())
+    summary_["warnings"].push_back(w);
+  std::fprintf(stderr, "anisodyn-dmc: warning: %s\n", w.c_str());
 }
 
-bool DmcRunner::segment_done() const {
-  const FieldSegment& seg = protocol_.segments[cursor_.segment];
-  if (seg.unit == FieldSegment::Unit::Cycles) return static_cast<double>(cursor_.cycle) >= cursor_.segment_end;
-  return cursor_.time >= cursor_.segment_end;
-}
-
-double DmcRunner::schedule_fraction() const {
-  const FieldSegment& seg = protocol_.segments[cursor_.segment];
-  const double now = seg.unit == FieldSegment::Unit::Cycles ? static_cast<double>(cursor_.cycle) : cursor_.time;
-  const double span = cursor_.segment_end - cursor_.segment_start;
-  const double within = span > 0.0 ? std::clamp((now - cursor_.segment_start) / span, 0.0, 1.0) : 1.0;
-  return (static_cast<double>(cursor_.segment) + within) / static_cast<double>(protocol_.segments.size());
-}
-
-void DmcRunner::switch_field(io::H5mdWriter& out, bool on) {
+Vec3 DmcRunner::switch_field(bool on, std::int64_t step) {
   OrientationalField& field = engine_.orientational_field();
-  if (on && field.active() && protocol_.check_field_direction) {
+  if (on && field.active() && protocol_.field.check_direction) {
     // The field must be perpendicular to the nematic director (spec 10 §5): if it is not, turn it
     // into the plane perpendicular to the director and record the new direction.
     for (std::size_t s = 0; s < state_.species.size(); ++s) {
@@ -275,31 +238,22 @@ void DmcRunner::switch_field(io::H5mdWriter& out, bool on) {
       if (order[static_cast<std::size_t>(best)].order > kNematicThreshold && std::abs(n.dot(field.direction)) > 0.1) {
         const Vec3 e = (field.direction - field.direction.dot(n) * n).normalized();
         summary_["warnings"].push_back("field direction turned perpendicular to the director of axis " + std::string(1, kAxisLetters[best]) +
-                                       " at cycle " + std::to_string(cursor_.cycle));
+                                       " at cycle " + std::to_string(step));
         field.direction = e;
       }
       break;
     }
   }
   engine_.set_field_on(on);
-  const Vec3& e = field.direction;
-  out.append_observable("field_switches", cursor_.cycle, cursor_.time, std::vector<double>{on ? 1.0 : 0.0, e.x(), e.y(), e.z()});
-  out.set_observable_attribute("field_switches", "definition", "field state after a switch (1 on, 0 off) and the field direction x, y, z; the first row is the initial state");
-  out.set_observable_attribute("field_switches", "units", "1");
-  summary_["switches"].push_back({{"cycle", cursor_.cycle}, {"time", cursor_.time}, {"field", on ? "on" : "off"}});
-  cursor_.last_switch_cycle = cursor_.cycle;
+  return field.direction;
 }
 
-void DmcRunner::production_cycle(io::H5mdWriter& out) {
+double DmcRunner::advance() {
   const std::vector<double> dt_used = dt_;
   engine_.cycle();
   const auto& c = engine_.last_cycle();
   const double dt_bd = balance_->advance(c, dt_);
   if (protocol_.balance == BalanceMode::PerCycle) engine_.set_time_steps(dt_);
-  ++cursor_.cycle;
-  cursor_.time += dt_bd;
-  state_.step = cursor_.cycle;
-  state_.time = cursor_.time;
   for (std::size_t s = 0; s < c.size(); ++s) {
     production_totals_[s].add(c[s]);
     window_[s].add(c[s]);
@@ -307,17 +261,17 @@ void DmcRunner::production_cycle(io::H5mdWriter& out) {
   // The realised balance uses the time steps in force during the cycle.
   balance_->add_to(window_balance_, c, dt_used);
   balance_->add_to(production_balance_, c, dt_used);
-  ++window_cycles_;
-  if (cursor_.cycle % protocol_.observe_every == 0) observe(out);
-  if (engine_.tracer().active() && cursor_.cycle % protocol_.tracer->record_every == 0) {
-    const auto i = static_cast<std::size_t>(engine_.tracer().particle);
-    const Vec3 r = state_.box.unwrap(state_.particles.position(i), state_.particles.image(i));
-    out.append_observable("tracer_position", cursor_.cycle, cursor_.time, std::vector<double>{r.x(), r.y(), r.z()});
-  }
-  if (frame_due()) write_frame(out);
+  return dt_bd;
 }
 
-void DmcRunner::observe(io::H5mdWriter& out) {
+void DmcRunner::after_step(io::H5mdWriter& out, std::int64_t step, double time) {
+  if (!engine_.tracer().active() || step % protocol_.tracer->record_every != 0) return;
+  const auto i = static_cast<std::size_t>(engine_.tracer().particle);
+  const Vec3 r = state_.box.unwrap(state_.particles.position(i), state_.particles.image(i));
+  out.append_observable("tracer_position", step, time, std::vector<double>{r.x(), r.y(), r.z()});
+}
+
+void DmcRunner::observe(io::H5mdWriter& out, std::int64_t step, double t) {
   const std::size_t ns = state_.species.size();
   std::vector<double> acc(ns), pass(ns);
   for (std::size_t s = 0; s < ns; ++s) {
@@ -325,16 +279,15 @@ void DmcRunner::observe(io::H5mdWriter& out) {
     pass[s] = window_[s].pass_fraction();
   }
   const std::vector<double> balance = balance_->realised_balance(window_balance_);
-  const std::int64_t step = cursor_.cycle;
-  const double t = cursor_.time;
+  const bool orientational = protocol_.field.orientational.active(), dipolar = protocol_.field.dipoles.has_value();
   out.append_observable("acceptance", step, t, acc);
   out.append_observable("overlap_pass", step, t, pass);
   out.append_observable("time_step", step, t, dt_);
   out.append_observable("balance", step, t, balance);
   out.append_observable("field_on", step, t, engine_.field_on() ? 1.0 : 0.0);
   const double n = static_cast<double>(state_.particles.size());
-  if (protocol_.field.active()) out.append_observable("field_energy", step, t, engine_.field_energy() / n);
-  if (protocol_.dipole_gamma > 0.0) out.append_observable("dipolar_energy", step, t, engine_.dipolar_energy() / n);
+  if (orientational) out.append_observable("field_energy", step, t, engine_.field_energy() / n);
+  if (dipolar) out.append_observable("dipolar_energy", step, t, engine_.dipolar_energy() / n);
   for (std::size_t s = 0; s < ns; ++s) {
     if (!state_.species[s].shape.is_anisotropic()) continue;
     const auto o = body_axis_order(state_, static_cast<int>(s));
@@ -351,8 +304,8 @@ void DmcRunner::observe(io::H5mdWriter& out) {
     attr("balance", "1", "realised balance E_s δt_s / (E_ref δt_ref) per species over the cycles since the previous row, "
                          "E δt pooled as Σ(tried·E·δt)/Σ tried; NaN where the reference species had no trial or no positive E");
     attr("field_on", "1", "1 while the field is on, 0 while off");
-    if (protocol_.field.active()) attr("field_energy", "kT", "orientational-field energy per particle βU/N");
-    if (protocol_.dipole_gamma > 0.0) attr("dipolar_energy", "kT", "dipolar (Ewald, tinfoil) energy per particle βU/N; 0 while the field is off");
+    if (orientational) attr("field_energy", "kT", "orientational-field energy per particle βU/N");
+    if (dipolar) attr("dipolar_energy", "kT", "dipolar (Ewald, tinfoil) energy per particle βU/N; 0 while the field is off");
     for (std::size_t s = 0; s < ns; ++s)
       if (state_.species[s].shape.is_anisotropic())
         attr("order_" + state_.species[s].name, "1", "uniaxial order parameters U_T, U_W, U_L (largest Q-tensor eigenvalue per body axis)");
@@ -362,42 +315,19 @@ void DmcRunner::observe(io::H5mdWriter& out) {
   }
   std::fill(window_.begin(), window_.end(), TrialCounts{});
   window_balance_.clear(ns);
-  window_cycles_ = 0;
 }
 
-bool DmcRunner::frame_due() {
-  const FrameRules& f = protocol_.frames;
-  const std::int64_t c = cursor_.cycle;
-  const double t = cursor_.time;
-  bool due = f.every_cycles > 0 && c % f.every_cycles == 0;
-  const std::int64_t since = c - cursor_.last_switch_cycle;
-  if (f.after_switch_every > 0 && since <= f.after_switch_for && since % f.after_switch_every == 0) due = true;
-  if (f.log_cycle_due(since)) due = true;
-  if (f.every_time > 0.0 && t >= static_cast<double>(cursor_.next_time_frame) * f.every_time) {
-    due = true;
-    while (static_cast<double>(cursor_.next_time_frame) * f.every_time <= t) ++cursor_.next_time_frame;
-  }
-  if (f.log_per_decade > 0.0) {
-    auto log_time = [&](std::int64_t k) { return f.log_first_time * std::pow(10.0, static_cast<double>(k) / f.log_per_decade); };
-    if (t >= log_time(cursor_.next_log_frame)) {
-      due = true;
-      while (log_time(cursor_.next_log_frame) <= t) ++cursor_.next_log_frame;
-    }
-  }
-  return due;
-}
-
-void DmcRunner::write_frame(io::H5mdWriter& out) {
-  out.append_frame(state_, {{"body_displacement", 3, engine_.body_displacement().data()},
-                            {"body_rotation", 3, engine_.body_rotation().data()},
-                            {"rotation_vector", 9, engine_.rotation_vectors().data()}});
-  cursor_.last_frame_cycle = cursor_.cycle;
+std::vector<io::ParticleElement> DmcRunner::frame_elements() const {
+  return {{"body_displacement", 3, engine_.body_displacement().data()},
+          {"body_rotation", 3, engine_.body_rotation().data()},
+          {"rotation_vector", 9, engine_.rotation_vectors().data()}};
 }
 
 void DmcRunner::finish_summary() {
   const auto& ts = balance_->settings();
-  summary_["cycles"] = cursor_.cycle;
-  summary_["time"] = cursor_.time;
+  summary_["cycles"] = production_.step();
+  summary_["time"] = production_.time();
+  summary_["switches"] = production_.switches();
   summary_["balance_mode"] = protocol_.balance == BalanceMode::PerCycle ? "per_cycle" : protocol_.balance == BalanceMode::None ? "none" : "equilibrium";
   summary_["reference"] = state_.species[static_cast<std::size_t>(ts.reference)].name;
   summary_["clock"] = state_.species[static_cast<std::size_t>(ts.clock)].name;
@@ -421,18 +351,15 @@ void DmcRunner::finish_summary() {
                      {"acceptance", c.acceptance()}, {"overlap_pass", c.pass_fraction()},
                      {"a0", ts.a0 == TracerBathAcceptance::One ? nlohmann::json("one") : ts.a0 == TracerBathAcceptance::Fixed ? nlohmann::json(ts.a0_value) : nlohmann::json("overlap_pass")},
                      {"displacement_along_force", engine_.body_displacement()[3 * i + static_cast<std::size_t>(t.axis)]}};
-    if (cursor_.time > 0.0) j["drift_velocity"] = j["displacement_along_force"].get<double>() / cursor_.time;
+    if (production_.time() > 0.0) j["drift_velocity"] = j["displacement_along_force"].get<double>() / production_.time();
     summary_["tracer"] = j;
   }
 }
 
 nlohmann::json DmcRunner::checkpoint_state() const {
   const DmcCursor& c = cursor_;
-  return {{"cursor",
-           {{"production", c.production}, {"preliminary_iteration", c.preliminary_iteration}, {"preliminary_cycle", c.preliminary_cycle},
-            {"cycle", c.cycle}, {"time", c.time}, {"segment", c.segment}, {"segment_started", c.segment_started},
-            {"segment_start", c.segment_start}, {"segment_end", c.segment_end}, {"last_switch_cycle", c.last_switch_cycle}, {"next_log_frame", c.next_log_frame},
-            {"next_time_frame", c.next_time_frame}, {"last_frame_cycle", c.last_frame_cycle}}},
+  return {{"cursor", {{"production", c.production}, {"preliminary_iteration", c.preliminary_iteration}, {"preliminary_cycle", c.preliminary_cycle}}},
+          {"production", production_.checkpoint_state()},
           {"time_steps", dt_},
           {"engine", engine_.checkpoint()},
           {"balance", balance_->checkpoint()},
@@ -441,7 +368,6 @@ nlohmann::json DmcRunner::checkpoint_state() const {
           {"window", counts_json(window_)},
           {"window_balance", window_balance_.to_json()},
           {"production_balance", production_balance_.to_json()},
-          {"window_cycles", window_cycles_},
           {"summary", summary_}};
 }
 
@@ -450,16 +376,7 @@ void DmcRunner::restore(const nlohmann::json& j) {
   cursor_.production = c.at("production").get<bool>();
   cursor_.preliminary_iteration = c.at("preliminary_iteration").get<int>();
   cursor_.preliminary_cycle = c.at("preliminary_cycle").get<std::int64_t>();
-  cursor_.cycle = c.at("cycle").get<std::int64_t>();
-  cursor_.time = c.at("time").get<double>();
-  cursor_.segment = c.at("segment").get<std::size_t>();
-  cursor_.segment_started = c.at("segment_started").get<bool>();
-  cursor_.segment_start = c.at("segment_start").get<double>();
-  cursor_.segment_end = c.at("segment_end").get<double>();
-  cursor_.last_switch_cycle = c.at("last_switch_cycle").get<std::int64_t>();
-  cursor_.next_log_frame = c.at("next_log_frame").get<std::int64_t>();
-  cursor_.next_time_frame = c.at("next_time_frame").get<std::int64_t>();
-  cursor_.last_frame_cycle = c.at("last_frame_cycle").get<std::int64_t>();
+  production_.restore(j.at("production"));
   dt_ = j.at("time_steps").get<std::vector<double>>();
   engine_.restore(j.at("engine"));
   balance_->restore(j.at("balance"));
@@ -468,10 +385,7 @@ void DmcRunner::restore(const nlohmann::json& j) {
   window_ = counts_from_json(j.at("window"));
   window_balance_.from_json(j.at("window_balance"));
   production_balance_.from_json(j.at("production_balance"));
-  window_cycles_ = j.at("window_cycles").get<std::int64_t>();
   summary_ = j.at("summary");
-  state_.step = cursor_.cycle;
-  state_.time = cursor_.time;
 }
 
 }  // namespace anisodyn

@@ -79,7 +79,7 @@ void McRunner::sample() {
     record("field_energy", {engine_.field_energy() / static_cast<double>(state_.particles.size())}, "field energy per particle βU/N");
 }
 
-void McRunner::one_cycle(const McPhase& phase, std::int64_t checkpoint_every, const std::function<void()>& checkpoint) {
+void McRunner::one_cycle(const McPhase& phase) {
   engine_.cycle();
   ++cursor_.total_cycles;
   ++cursor_.cycle_in_phase;
@@ -92,25 +92,21 @@ void McRunner::one_cycle(const McPhase& phase, std::int64_t checkpoint_every, co
   if (cursor_.total_cycles % protocol_.sample_every == 0) sample();
   if (protocol_.frame_every > 0 && cursor_.total_cycles % protocol_.frame_every == 0) frames_.push_back(state_);
   if (overlaps_present_) return;  // a checkpoint must hold a valid configuration: wait for it
-  if (interrupt_requested()) {
-    checkpoint();
-    throw Interrupted("checkpoint written at cycle " + std::to_string(cursor_.total_cycles) + "; run again to resume");
-  }
-  if (checkpoint_every > 0 && cursor_.total_cycles % checkpoint_every == 0) checkpoint();
+  checkpoints_->tick(cursor_.total_cycles, "cycle " + std::to_string(cursor_.total_cycles));
 }
 
-void McRunner::run_fixed_phase(const McPhase& phase, std::int64_t checkpoint_every, const std::function<void()>& checkpoint) {
+void McRunner::run_fixed_phase(const McPhase& phase) {
   if (phase.type == McPhase::Type::Npt) engine_.set_pressure(phase.pressure, phase.box_moves);
   else engine_.set_pressure(std::nullopt);
   Progress progress(std::string("mc ") + type_name(phase.type) + " " + phase.label, phase.cycles, quiet_);
   while (cursor_.cycle_in_phase < phase.cycles) {
-    one_cycle(phase, checkpoint_every, checkpoint);
+    one_cycle(phase);
     progress.update(cursor_.cycle_in_phase, phase_detail(state_, engine_));
   }
   progress.finish(phase_detail(state_, engine_));
 }
 
-void McRunner::run_quick_compress(const McPhase& phase, std::int64_t checkpoint_every, const std::function<void()>& checkpoint) {
+void McRunner::run_quick_compress(const McPhase& phase) {
   const double target_volume = state_.packing_fraction() * state_.box.volume() / phase.target_packing_fraction;
   const double reach = largest_pair_cutoff(state_.species);
   if ((state_.box.edges() * std::cbrt(target_volume / state_.box.volume())).minCoeff() < 2.0 * reach)
@@ -125,7 +121,7 @@ void McRunner::run_quick_compress(const McPhase& phase, std::int64_t checkpoint_
     overlaps_present_ = true;
     std::int64_t sweeps = 0;
     while (engine_.overlap().first_overlap()) {
-      one_cycle(phase, checkpoint_every, checkpoint);
+      one_cycle(phase);
       ++sweeps;
       if (cursor_.cycle_in_phase >= phase.max_cycles)
         throw RuntimeFailure("quick compression did not reach packing fraction " + std::to_string(phase.target_packing_fraction) +
@@ -136,7 +132,7 @@ void McRunner::run_quick_compress(const McPhase& phase, std::int64_t checkpoint_
     // Removal leaves particles just touching; ordinary sweeps reopen the gaps before the next
     // shrink (without them each shrink creates more overlaps and the compression stalls). The
     // configuration is valid again, so these cycles also honour interrupts and checkpoints.
-    for (std::int64_t k = 0; k < phase.squeeze_sweeps; ++k) one_cycle(phase, checkpoint_every, checkpoint);
+    for (std::int64_t k = 0; k < phase.squeeze_sweeps; ++k) one_cycle(phase);
     // Adapt the step: a few sweeps per shrink keeps the particles close to a relaxed packing.
     if (sweeps <= 3) cursor_.quick_step = std::min(0.05, 1.5 * cursor_.quick_step);
     else if (sweeps > 20) cursor_.quick_step = std::max(1e-4, 0.7 * cursor_.quick_step);
@@ -145,8 +141,8 @@ void McRunner::run_quick_compress(const McPhase& phase, std::int64_t checkpoint_
   progress.finish(phase_detail(state_, engine_));
 }
 
-void McRunner::run_compress_phase(const McPhase& phase, std::int64_t checkpoint_every, const std::function<void()>& checkpoint) {
-  if (phase.method == "quick") return run_quick_compress(phase, checkpoint_every, checkpoint);
+void McRunner::run_compress_phase(const McPhase& phase) {
+  if (phase.method == "quick") return run_quick_compress(phase);
   const double target = phase.target_packing_fraction;
   const double target_volume = state_.packing_fraction() * state_.box.volume() / target;
   Progress progress("mc compress to eta=" + std::to_string(target), phase.max_cycles, quiet_);
@@ -168,7 +164,7 @@ void McRunner::run_compress_phase(const McPhase& phase, std::int64_t checkpoint_
       const double eta_before = state_.packing_fraction();
       const std::int64_t step_end = (cursor_.cycle_in_phase / phase.cycles_per_step + 1) * phase.cycles_per_step;
       while (cursor_.cycle_in_phase < step_end) {
-        one_cycle(phase, checkpoint_every, checkpoint);
+        one_cycle(phase);
         progress.update(cursor_.cycle_in_phase, phase_detail(state_, engine_) + " betaP=" + std::to_string(cursor_.compress_pressure));
       }
       check_budget();
@@ -185,7 +181,7 @@ void McRunner::run_compress_phase(const McPhase& phase, std::int64_t checkpoint_
     const double v = state_.box.volume();
     const double next = v < target_volume ? target_volume : std::max(target_volume, v * (1.0 - 1e-3));
     if (!engine_.try_rescale(next)) {
-      for (std::int64_t k = 0; k < phase.squeeze_sweeps; ++k) one_cycle(phase, checkpoint_every, checkpoint);
+      for (std::int64_t k = 0; k < phase.squeeze_sweeps; ++k) one_cycle(phase);
       check_budget();
       progress.update(cursor_.cycle_in_phase, phase_detail(state_, engine_) + " squeezing");
     }
@@ -269,12 +265,14 @@ void McRunner::summarise_phase(const McPhase& phase, std::int64_t first_step) {
 }
 
 void McRunner::run(std::int64_t checkpoint_every, const std::function<void()>& checkpoint) {
+  run::CheckpointClock checkpoints(checkpoint_every, checkpoint);
+  checkpoints_ = &checkpoints;
   for (; cursor_.phase < protocol_.phases.size(); ++cursor_.phase) {
     const McPhase& phase = protocol_.phases[cursor_.phase];
     const std::int64_t first_step = cursor_.total_cycles - cursor_.cycle_in_phase;
     if (cursor_.cycle_in_phase == 0) tune_mark_ = engine_.counters();
-    if (phase.type == McPhase::Type::Compress) run_compress_phase(phase, checkpoint_every, checkpoint);
-    else run_fixed_phase(phase, checkpoint_every, checkpoint);
+    if (phase.type == McPhase::Type::Compress) run_compress_phase(phase);
+    else run_fixed_phase(phase);
     summarise_phase(phase, first_step);
     cursor_.cycle_in_phase = 0;
     cursor_.compress_pressure = 0.0;

@@ -1,5 +1,5 @@
 #include "anisodyn/mc/protocol_config.hpp"
-#include "anisodyn/io/body_axis_choice.hpp"
+#include "anisodyn/run/field_config.hpp"
 
 #include <initializer_list>
 #include <string>
@@ -64,16 +64,6 @@ McPhase parse_phase(tool::ConfigNode n, std::size_t index) {
 }
 }  // namespace
 
-OrientationalField parse_orientational_field(tool::ConfigNode n) {
-  OrientationalField f;
-  f.strength = n.number("strength");
-  f.body_axis = io::choose_body_axis(n, "axis", "W", false);
-  const Vec3 d = n.vec3("direction", Vec3::UnitX());
-  if (d.norm() == 0.0) n.fail("direction", "expected a non-zero direction vector");
-  f.direction = d.normalized();
-  return f;
-}
-
 McProtocol parse_mc_protocol(tool::ConfigNode& cfg) {
   McProtocol p;
   p.seed = static_cast<std::uint64_t>(cfg.non_negative_integer("seed", 1));
@@ -82,7 +72,7 @@ McProtocol parse_mc_protocol(tool::ConfigNode& cfg) {
   p.tune_every = cfg.positive_integer("tune_every", 100);
   p.sample_every = cfg.positive_integer("sample_every", 10);
   p.frame_every = cfg.non_negative_integer("frame_every", 0);
-  if (auto f = cfg.optional_object("field")) p.field = parse_orientational_field(*f);
+  p.field = run::parse_field_config(cfg, run::FieldUse::Constant).orientational;
   auto phases = cfg.objects("phases");
   if (phases.empty()) cfg.fail("phases", "expected at least one phase (compress, npt or nvt)");
   for (std::size_t i = 0; i < phases.size(); ++i) p.phases.push_back(parse_phase(phases[i], i));

@@ -1,6 +1,7 @@
 #pragma once
 // What an anisodyn-dmc run does, as parsed from its JSON configuration (docs/dmc.md): time steps
-// and their balancing, the field schedule, the pulled tracer, frame spacing and observables.
+// and their balancing, the field schedule, the pulled tracer, frame spacing and observables. The
+// field, schedule and frame blocks follow the schema every engine shares (run/, docs/run.md).
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -9,37 +10,12 @@
 
 #include "anisodyn/dmc/dmc_engine.hpp"
 #include "anisodyn/dmc/time_balance.hpp"
+#include "anisodyn/run/field_config.hpp"
+#include "anisodyn/run/frame_rules.hpp"
+#include "anisodyn/run/schedule.hpp"
 #include "anisodyn/tool/json_config.hpp"
 
 namespace anisodyn {
-
-/// One stretch of the run with the field on or off. Its end is given as a duration from the
-/// segment's start (cycles or Brownian time) or as an absolute instant (from a `switches` list).
-struct FieldSegment {
-  bool field_on = false;
-  enum class Unit { Cycles, Time } unit = Unit::Cycles;
-  bool absolute = false;
-  double length = 0.0;  // duration (or end instant when absolute) in cycles or τ
-};
-
-/// Frame spacing: a frame is written at the end of any cycle where one of the rules fires, plus
-/// always at the start and at the end of production.
-struct FrameRules {
-  std::int64_t every_cycles = 0;        // linear in cycles
-  double every_time = 0.0;              // linear in Brownian time
-  double log_first_time = 0.0;          // logarithmic in Brownian time: t_k = first · 10^(k/per_decade)
-  double log_per_decade = 0.0;
-  std::int64_t after_switch_every = 0;  // denser frames for a while after each field switch
-  std::int64_t after_switch_for = 0;
-  double log_cycles_per_decade = 0.0;   // logarithmic in cycles after each switch (and the start) …
-  std::int64_t log_cycles_restart = 0;  // … restarted every this many cycles (0: once per switch)
-
-  /// Whether the logarithmic cycle rule writes a frame `since_switch` cycles after the last switch:
-  /// m = since_switch (mod restart) is 0 or one of round(10^(k/per_decade)), k = 0, 1, … (1, 2, 3,
-  /// 4, 6, 7, 10, … cycles at 5 per decade), so that every restart block holds lags from one cycle
-  /// up, wherever a time window later cuts the run.
-  bool log_cycle_due(std::int64_t since_switch) const;
-};
 
 struct TracerSettings {
   std::string species;
@@ -61,15 +37,10 @@ struct DmcProtocol {
   int preliminary_iterations = 3;
   double preliminary_tolerance = 1e-3;
   double smoothing_cycles = 10.0;
-  std::vector<FieldSegment> segments;        // the whole run, in order
-  OrientationalField field;                  // strength 0: none
-  bool check_field_direction = true;
-  double dipole_gamma = 0.0;
-  std::vector<std::string> dipole_species;
-  double ewald_accuracy = 1e-5;
-  bool ewald_minimum_image_only = false;
+  std::vector<run::FieldSegment> segments;   // the whole run, in order
+  run::FieldConfig field;
   std::optional<TracerSettings> tracer;
-  FrameRules frames;
+  run::FrameRules frames;
   std::int64_t observe_every = 1;
   /// Diffusion coefficients replacing those of the input's species table.
   std::map<std::string, std::pair<std::optional<Vec3>, std::optional<Vec3>>> diffusion;

@@ -1,7 +1,8 @@
 #pragma once
-// An anisodyn-dmc run: the preliminary balancing stage (equilibrium mode), then production over
-// the field schedule, streaming frames and per-cycle observables to an H5MD writer, with
-// checkpoints that let an interrupted run continue bit-for-bit.
+// An anisodyn-dmc run: the preliminary balancing stage (equilibrium mode), then production by the
+// shared production runner (run/production_runner.hpp), of which DMC is a client: one step is one
+// cycle of N trial moves, its time the Brownian time the time balance assigns to it. Checkpoints
+// let an interrupted run continue bit-for-bit.
 #include <functional>
 #include <memory>
 #include <string>
@@ -13,26 +14,18 @@
 #include "anisodyn/dmc/dmc_protocol.hpp"
 #include "anisodyn/dmc/time_balance.hpp"
 #include "anisodyn/io/h5md.hpp"
+#include "anisodyn/run/production_runner.hpp"
 
 namespace anisodyn {
 
-/// Resumable position within the run (stored in checkpoints).
+/// Where the run stands before production (stored in checkpoints); production keeps its own cursor.
 struct DmcCursor {
   bool production = false;
   int preliminary_iteration = 0;
-  std::int64_t preliminary_cycle = 0;      // within the current iteration
-  std::int64_t cycle = 0;                  // production cycles done
-  double time = 0.0;                       // Brownian time of production
-  std::size_t segment = 0;
-  bool segment_started = false;
-  double segment_start = 0.0, segment_end = 0.0;  // current segment, in its unit (cycles or τ)
-  std::int64_t last_switch_cycle = 0;
-  std::int64_t next_log_frame = 0;         // index k of the next logarithmic frame time
-  std::int64_t next_time_frame = 1;        // index k of the next linear-in-time frame
-  std::int64_t last_frame_cycle = -1;
+  std::int64_t preliminary_cycle = 0;  // within the current iteration
 };
 
-class DmcRunner {
+class DmcRunner : public run::ProductionClient {
  public:
   /// Throws InputError for inconsistent settings (missing time steps or diffusion coefficients).
   DmcRunner(State& state, const DmcProtocol& protocol, const std::string& config_file, bool quiet);
@@ -43,7 +36,7 @@ class DmcRunner {
 
   /// Production cycle of the last completed output row (−1 before production): rows after it are
   /// dropped when resuming.
-  std::int64_t last_output_step() const { return cursor_.production ? cursor_.cycle : -1; }
+  std::int64_t last_output_step() const { return cursor_.production ? production_.step() : -1; }
   nlohmann::json checkpoint_state() const;
   /// Also sets the state's step and time to the checkpoint's production cycle and Brownian time.
   void restore(const nlohmann::json& j);
@@ -51,17 +44,19 @@ class DmcRunner {
   const DmcEngine& engine() const { return engine_; }
 
  private:
+  // run::ProductionClient
+  double advance() override;
+  void observe(io::H5mdWriter& out, std::int64_t step, double time) override;
+  void after_step(io::H5mdWriter& out, std::int64_t step, double time) override;
+  Vec3 switch_field(bool on, std::int64_t step) override;
+  bool field_on() const override { return engine_.field_on(); }
+  std::vector<io::ParticleElement> frame_elements() const override;
+
   void configure_species();
-  void run_preliminary(const std::function<void()>& tick);
-  void start_segment(io::H5mdWriter& out);
-  bool segment_done() const;
-  /// Fraction of the schedule done, for progress reports.
-  double schedule_fraction() const;
-  void switch_field(io::H5mdWriter& out, bool on);
-  void production_cycle(io::H5mdWriter& out);
-  void observe(io::H5mdWriter& out);
-  bool frame_due();
-  void write_frame(io::H5mdWriter& out);
+  void configure_fields();
+  void run_preliminary(run::CheckpointClock& checkpoints);
+  std::int64_t preliminary_cycles_done() const;
+  void warn_about_tracer_validity();
   void finish_summary();
   std::int64_t species_index(const std::string& name) const;
 
@@ -72,10 +67,10 @@ class DmcRunner {
   DmcEngine engine_;
   std::unique_ptr<TimeBalance> balance_;
   DmcCursor cursor_;
+  run::ProductionRunner production_;
   std::vector<double> dt_;
   std::vector<TrialCounts> preliminary_totals_, production_totals_, window_;
   BalanceSums window_balance_, production_balance_;  // realised balance per observation row, and over production
-  std::int64_t window_cycles_ = 0;
   bool attributes_written_ = false;
   int tracer_species_ = -1;
   nlohmann::json summary_ = nlohmann::json::object();

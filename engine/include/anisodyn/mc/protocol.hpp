@@ -18,6 +18,7 @@
 
 #include "anisodyn/interactions/orientational_field.hpp"
 #include "anisodyn/mc/mc_engine.hpp"
+#include "anisodyn/run/checkpoint_clock.hpp"
 #include "anisodyn/system/state.hpp"
 
 namespace anisodyn {
@@ -92,10 +93,10 @@ class McRunner {
   void restore(const nlohmann::json& engine_state, std::map<std::string, Series> observables, std::vector<State> frames);
 
  private:
-  void run_fixed_phase(const McPhase& phase, std::int64_t checkpoint_every, const std::function<void()>& checkpoint);
-  void run_compress_phase(const McPhase& phase, std::int64_t checkpoint_every, const std::function<void()>& checkpoint);
-  void run_quick_compress(const McPhase& phase, std::int64_t checkpoint_every, const std::function<void()>& checkpoint);
-  void one_cycle(const McPhase& phase, std::int64_t checkpoint_every, const std::function<void()>& checkpoint);
+  void run_fixed_phase(const McPhase& phase);
+  void run_compress_phase(const McPhase& phase);
+  void run_quick_compress(const McPhase& phase);
+  void one_cycle(const McPhase& phase);
   void sample();
   void summarise_phase(const McPhase& phase, std::int64_t first_step);
   void record(const std::string& name, const std::vector<double>& values, const std::string& definition);
@@ -106,6 +107,7 @@ class McRunner {
   bool quiet_;
   McCursor cursor_;
   bool overlaps_present_ = false;  // quick compression: checkpoints wait until the overlaps are gone
+  run::CheckpointClock* checkpoints_ = nullptr;  // during run()
   MoveCounters tune_mark_, sample_mark_;
   std::map<std::string, Series> observables_;
   std::vector<State> frames_;

@@ -1,7 +1,7 @@
 #pragma once
 // The anisodyn-mc configuration (docs/mc.md):
 //   {"seed": 1, "target_acceptance": 0.35, "tune_every": 100, "sample_every": 10, "frame_every": 0,
-//    "field": {"strength": 3, "axis": "W", "direction": [1, 0, 0]},
+//    "field": {"direction": [1, 0, 0], "orientational": {"strength": 3, "axis": "W"}},  (run/field_config.hpp)
 //    "phases": [{"type": "compress", "packing_fraction": 0.34},
 //               {"type": "nvt", "cycles": 20000, "tune": true},
 //               {"type": "nvt", "cycles": 50000, "expect_phase": "nematic"}]}
@@ -12,6 +12,5 @@ namespace anisodyn {
 
 /// Reads the protocol from the tool configuration.
 McProtocol parse_mc_protocol(tool::ConfigNode& cfg);
-OrientationalField parse_orientational_field(tool::ConfigNode node);
 
 }  // namespace anisodyn

@@ -1,0 +1,24 @@
+#pragma once
+// When a run writes a checkpoint: every `every` steps (0 = never) and, after an interrupt request
+// (SIGINT/SIGTERM), at once, after which the run stops with Interrupted. Polled at step boundaries,
+// where the state is consistent.
+#include <cstdint>
+#include <functional>
+#include <string>
+
+namespace anisodyn::run {
+
+class CheckpointClock {
+ public:
+  CheckpointClock(std::int64_t every, std::function<void()> write) : every_(every), write_(std::move(write)) {}
+  /// Called after each step; `done` counts the run's steps so far (its checkpoint cadence), `where`
+  /// says where the run stands, for the message of an interrupt ("production cycle 1200").
+  void tick(std::int64_t done, const std::string& where);
+  void write() const { if (write_) write_(); }
+
+ private:
+  std::int64_t every_;
+  std::function<void()> write_;
+};
+
+}  // namespace anisodyn::run
