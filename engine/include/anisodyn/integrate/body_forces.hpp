@@ -1,0 +1,34 @@
+#pragma once
+// Forces and torques on the bodies of a state, as a force field hands them to an integrator.
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+#include "anisodyn/core/types.hpp"
+#include "anisodyn/system/state.hpp"
+
+namespace anisodyn {
+
+/// Per body, in particle order: the force and the torque about the body centre, both lab frame;
+/// bodies made of sites get them from reduce_site_forces (system/rigid_sites.hpp). The energy is the
+/// potential energy of the configuration and the virial W = Σ_{i<j} r_ij ⊗ F_ij (as in
+/// interactions/pair_forces.hpp); integrators do not use them, observers may.
+struct BodyForces {
+  std::vector<Vec3> force, torque;
+  double energy = 0;
+  Mat3 virial = Mat3::Zero();
+
+  /// n bodies, every force, torque, the energy and the virial zero.
+  void reset(std::size_t n) {
+    force.assign(n, Vec3::Zero());
+    torque.assign(n, Vec3::Zero());
+    energy = 0;
+    virial.setZero();
+  }
+};
+
+/// Computes the forces of a state. The integrator calls it with `out` reset to the state's size,
+/// so a field may add its terms into it.
+using ForceField = std::function<void(const State&, BodyForces&)>;
+
+}  // namespace anisodyn
