@@ -20,6 +20,7 @@
 #include "anisodyn/core/quaternion.hpp"
 #include "anisodyn/core/rng.hpp"
 #include "anisodyn/geometry/ellipsoid_overlap.hpp"
+#include "anisodyn/geometry/overlap.hpp"
 #include "overlap_sampling.hpp"
 #include "reference_ellipsoid.hpp"
 
@@ -182,20 +183,24 @@ void expect_sound(const Stats& st) {
 
 }  // namespace
 
+// The random-pair tests call the kernels through the shape dispatch (anisodyn::overlap on Shapes
+// made from the shape list), the way MC and DMC call them, in both argument orders.
 TEST(EllipsoidOverlap, RandomEllipsoidPairsAgreeWithTheAlgebraicReference) {
+  using anisodyn::Shape;
   expect_sound(run(
       "ellipsoid-ellipsoid", 0, sample_ellipsoid_pair,
-      [](const Pair& p) { return overlap_ellipsoid_ellipsoid(p.a, p.Ra, p.b, p.Rb, p.t); },
-      [](const Pair& p) { return overlap_ellipsoid_ellipsoid(p.b, p.Rb, p.a, p.Ra, -p.t); },
+      [](const Pair& p) { return anisodyn::overlap(Shape::ellipsoid(p.a), p.Ra, Shape::ellipsoid(p.b), p.Rb, p.t); },
+      [](const Pair& p) { return anisodyn::overlap(Shape::ellipsoid(p.b), p.Rb, Shape::ellipsoid(p.a), p.Ra, -p.t); },
       [](const Pair& p) { return anisodyn::reference::ellipsoid_ellipsoid(p.a, p.Ra, p.b, p.Rb, p.t); }));
 }
 
 TEST(EllipsoidOverlap, RandomEllipsoidSpherePairsAgreeWithTheDistanceReference) {
-  // Second form: the sphere passed to the ellipsoid–ellipsoid kernel.
+  // Second form: the sphere first (the dispatch swaps the bodies and flips t).
+  using anisodyn::Shape;
   expect_sound(run(
       "ellipsoid-sphere", 1, sample_ellipsoid_sphere,
-      [](const Pair& p) { return overlap_ellipsoid_sphere(p.a, p.Ra, p.b[0], p.t); },
-      [](const Pair& p) { return overlap_ellipsoid_ellipsoid(p.b, p.Rb, p.a, p.Ra, -p.t); },
+      [](const Pair& p) { return anisodyn::overlap(Shape::ellipsoid(p.a), p.Ra, Shape::sphere(2.0 * p.b[0]), p.Rb, p.t); },
+      [](const Pair& p) { return anisodyn::overlap(Shape::sphere(2.0 * p.b[0]), p.Rb, Shape::ellipsoid(p.a), p.Ra, -p.t); },
       [](const Pair& p) { return anisodyn::reference::ellipsoid_sphere(p.a, p.Ra, p.b[0], p.t); }));
 }
 

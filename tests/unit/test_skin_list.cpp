@@ -12,6 +12,7 @@
 #include "anisodyn/geometry/overlap.hpp"
 #include "anisodyn/interactions/hard_overlap.hpp"
 #include "brute_force_search.hpp"
+#include "reference_ellipsoid.hpp"
 
 using namespace anisodyn;
 using anisodyn::testing_support::brute_force_overlaps;
@@ -52,6 +53,11 @@ Vec3 random_body_point(const Shape& shape, Rng& rng) {
                                            : rng.uniform(-0.5, 0.5) * shape.length;
       return Vec3(0, 0, s) + (rng.uniform() < 0.5 ? 0.5 * shape.diameter * random_unit(rng) : random_in_ball(rng, 0.5 * shape.diameter));
     }
+    case ShapeKind::Ellipsoid: {
+      // The unit ball (surface or inside) stretched by the semi-axes.
+      const Vec3 u = rng.uniform() < 0.5 ? random_unit(rng) : random_in_ball(rng, 1.0);
+      return u.cwiseProduct(shape.half_extents());
+    }
     case ShapeKind::Sphere: break;
   }
   return rng.uniform() < 0.5 ? 0.5 * shape.diameter * random_unit(rng) : random_in_ball(rng, 0.5 * shape.diameter);
@@ -66,13 +72,23 @@ double distance_to_body(const Shape& shape, const Mat3& R, const Vec3& p) {
       const double s = std::clamp(c.z(), -0.5 * shape.length, 0.5 * shape.length);
       return std::max((c - Vec3(0, 0, s)).norm() - 0.5 * shape.diameter, 0.0);
     }
+    case ShapeKind::Ellipsoid:  // the long-double reference of the ellipsoid overlap tests
+      return static_cast<double>(reference::ellipsoid_point_distance(reference::ld(shape.half_extents()),
+                                                                     reference::ld(Mat3(Mat3::Identity())), reference::ld(c)));
     case ShapeKind::Sphere: break;
   }
   return std::max(c.norm() - 0.5 * shape.diameter, 0.0);
 }
 
 const Shape kShapes[] = {Shape::cuboid(1.0, 3.4641, 12.0), Shape::cuboid(1.0, 1.0, 12.0), Shape::spherocylinder(10.0, 1.0),
-                         Shape::sphere(0.7)};
+                         Shape::sphere(0.7), Shape::ellipsoid(Vec3(0.5, 1.5, 4.0))};
+
+/// Whether lab point p lies in the body at the origin with rotation R (contact counts).
+bool contains(const Shape& shape, const Mat3& R, const Vec3& p) {
+  if (shape.kind == ShapeKind::Ellipsoid)  // exact, without the overlap kernel
+    return (R.transpose() * p).cwiseQuotient(shape.half_extents()).squaredNorm() <= 1.0;
+  return overlap(shape, R, Shape::sphere(0.0), Mat3::Identity(), p);
+}
 
 }  // namespace
 
@@ -111,17 +127,18 @@ TEST(SkinGeometry, GrownBodyHoldsEveryPointWithinTheSkin) {
   const double t = 0.3;
   for (const Shape& shape : kShapes) {
     const Shape grown = shape.grown(t);
-    const Shape point = Shape::sphere(0.0);
     for (int k = 0; k < 20000; ++k) {
       const Mat3 R = random_quaternion(rng).toRotationMatrix();
       const Vec3 p = R * random_body_point(shape, rng) + 0.999 * t * random_unit(rng);
-      ASSERT_LE(distance_to_body(shape, R, p), t);
-      ASSERT_TRUE(overlap(grown, R, point, Mat3::Identity(), p)) << shape_kind_name(shape.kind) << " sample " << k;
+      ASSERT_LE(distance_to_body(shape, R, p), t * (1.0 + 1e-12));
+      ASSERT_TRUE(contains(grown, R, p)) << shape_kind_name(shape.kind) << " sample " << k;
     }
-    // Grown by t, not more: points just beyond t off a face (or the cap) are outside.
-    const Vec3 off_face = shape.kind == ShapeKind::Cuboid ? Vec3(0, 0, 0.5 * shape.edges.z() + 1.001 * t)
-                                                          : Vec3(0, 0, shape.circumradius() + 1.001 * t);
-    EXPECT_FALSE(overlap(grown, Mat3::Identity(), point, Mat3::Identity(), off_face)) << shape_kind_name(shape.kind);
+    // Grown by t, not more: points just beyond t off a face (or the cap) are outside; for the
+    // ellipsoid (scaled by 1 + t/a_min, conservative along the longer axes) off the shortest axis.
+    const Vec3 off_face = shape.kind == ShapeKind::Cuboid      ? Vec3(0, 0, 0.5 * shape.edges.z() + 1.001 * t)
+                          : shape.kind == ShapeKind::Ellipsoid ? Vec3(0.5 * shape.edges.x() + 1.001 * t, 0, 0)
+                                                               : Vec3(0, 0, shape.circumradius() + 1.001 * t);
+    EXPECT_FALSE(contains(grown, Mat3::Identity(), off_face)) << shape_kind_name(shape.kind);
   }
 }
 

@@ -9,11 +9,7 @@
 
 namespace anisodyn {
 
-int default_alignment_axis(const Shape& shape) {
-  if (shape.kind != ShapeKind::Cuboid) return 2;
-  const Vec3& e = shape.edges;  // (T, W, L)
-  return e.y() <= std::sqrt(e.x() * e.z()) ? 2 : 0;
-}
+int default_alignment_axis(const Shape& shape) { return shape.alignment_axis(); }
 
 Vec3 box_edges_for_packing_fraction(const SpeciesTable& species, const std::vector<std::size_t>& counts,
                                     double eta, const Vec3& aspect) {
@@ -37,16 +33,6 @@ Quat draw_orientation(const OrientationRule& rule, Rng& rng) {
   return q.normalized();
 }
 
-/// Half-widths of the axis-aligned bounding box of a shape with rotation r.
-Vec3 aabb_half_widths(const Shape& shape, const Mat3& r) {
-  switch (shape.kind) {
-    case ShapeKind::Sphere: return Vec3::Constant(0.5 * shape.diameter);
-    case ShapeKind::Cuboid: return r.cwiseAbs() * shape.half_extents();
-    case ShapeKind::Spherocylinder: return 0.5 * shape.length * r.col(2).cwiseAbs() + Vec3::Constant(0.5 * shape.diameter);
-  }
-  return Vec3::Zero();
-}
-
 /// New particles in random order (species interleaved), each with its orientation.
 std::vector<std::pair<int, Quat>> draw_particles(const PlacementRequest& req, Rng& rng) {
   std::vector<std::pair<int, Quat>> out;
@@ -68,7 +54,7 @@ void place_on_lattice(State& state, const PlacementRequest& req, Rng& rng) {
   if (particles.empty()) return;
   Vec3 spacing = Vec3::Zero();
   for (const auto& [s, q] : particles)
-    spacing = spacing.cwiseMax(2.0 * aabb_half_widths(state.species[static_cast<std::size_t>(s)].shape, q.toRotationMatrix()));
+    spacing = spacing.cwiseMax(2.0 * state.species[static_cast<std::size_t>(s)].shape.lab_half_extents(q.toRotationMatrix()));
   spacing *= 1.0 + 1e-9;  // strict separation: contact counts as overlap
   const Vec3& L = state.box.edges();
   Int3 most;

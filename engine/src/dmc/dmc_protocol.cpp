@@ -115,24 +115,11 @@ DmcProtocol parse_dmc_protocol(tool::ConfigNode& cfg) {
     for (const auto& [name, value] : sp->raw().items()) {
       if (!name.empty() && name[0] == '_') continue;
       auto node = sp->object(name);
-      auto& d = p.diffusion[name];
-      if (auto from = node.optional_object("diffusion_from")) {
-        for (const char* key : {"D_trans", "D_rot"})
-          if (node.has(key)) node.fail(key, "expected either diffusion_from or explicit D_trans/D_rot, not both");
-        const DiffusionFromFile f = read_diffusion_from(*from, std::nullopt);
-        d.first = f.D_trans;
-        d.second = f.D_rot;
-        p.diffusion_shape.emplace(name, f.shape);
-        p.diffusion_origins[name] = f.origin;
-      }
-      if (node.has("D_trans") || node.has("D_rot")) p.diffusion_origins[name] = "configuration";
-      if (node.has("D_trans")) d.first = node.vec3("D_trans");
-      if (node.has("D_rot")) {
-        d.second = node.vec3("D_rot");
-        p.rotational_diffusion_keys[name] = node.child_path("D_rot");
-      }
-      for (const auto& v : {d.first, d.second})
-        if (v && v->minCoeff() < 0.0) node.fail(d.first == v ? "D_trans" : "D_rot", "expected non-negative diffusion coefficients (body axes T, W, L)");
+      const DiffusionSpec d = parse_diffusion(node);
+      p.diffusion[name] = {d.D_trans, d.D_rot};
+      if (d.shape) p.diffusion_shape.emplace(name, *d.shape);
+      if (!d.origin.is_null()) p.diffusion_origins[name] = d.origin;
+      if (node.has("D_rot") && !node.has("diffusion_from")) p.rotational_diffusion_keys[name] = node.child_path("D_rot");
     }
   }
   return p;

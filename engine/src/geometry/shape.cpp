@@ -1,67 +1,60 @@
-#include "anisodyn/geometry/shape.hpp"
+// The shape queries, dispatched on the kind over the shape list (geometry/shape_list.hpp).
+#include <vector>
 
-#include <cmath>
+#include "anisodyn/geometry/shapes.hpp"
 
 namespace anisodyn {
 
-double Shape::circumradius() const {
+namespace {
+template <class F>
+decltype(auto) with_traits(ShapeKind kind, F&& f) {
   switch (kind) {
-    case ShapeKind::Sphere: return 0.5 * diameter;
-    case ShapeKind::Cuboid: return 0.5 * edges.norm();
-    case ShapeKind::Spherocylinder: return 0.5 * (length + diameter);
+#define ANISODYN_SHAPE_CASE(Name) \
+  case ShapeKind::Name: return f(ShapeTraits<ShapeKind::Name>{});
+    ANISODYN_SHAPES(ANISODYN_SHAPE_CASE)
+#undef ANISODYN_SHAPE_CASE
   }
-  return 0.0;
+  __builtin_unreachable();
 }
+}  // namespace
 
-double Shape::inscribed_radius() const {
-  switch (kind) {
-    case ShapeKind::Sphere: return 0.5 * diameter;
-    case ShapeKind::Cuboid: return 0.5 * edges.minCoeff();
-    case ShapeKind::Spherocylinder: return 0.5 * diameter;
-  }
-  return 0.0;
+double Shape::circumradius() const { return with_traits(kind, [&](auto t) { return decltype(t)::circumradius(*this); }); }
+double Shape::inscribed_radius() const { return with_traits(kind, [&](auto t) { return decltype(t)::inscribed_radius(*this); }); }
+double Shape::volume() const { return with_traits(kind, [&](auto t) { return decltype(t)::volume(*this); }); }
+bool Shape::is_anisotropic() const { return with_traits(kind, [](auto t) { return decltype(t)::anisotropic; }); }
+Shape Shape::grown(double t) const { return with_traits(kind, [&](auto tr) { return decltype(tr)::grown(*this, t); }); }
+Vec3 Shape::lab_half_extents(const Mat3& R) const {
+  return with_traits(kind, [&](auto t) -> Vec3 { return decltype(t)::lab_half_extents(*this, R); });
 }
-
-double Shape::volume() const {
-  switch (kind) {
-    case ShapeKind::Sphere: return M_PI * diameter * diameter * diameter / 6.0;
-    case ShapeKind::Cuboid: return edges.prod();
-    case ShapeKind::Spherocylinder:
-      return M_PI * diameter * diameter * length / 4.0 + M_PI * diameter * diameter * diameter / 6.0;
-  }
-  return 0.0;
-}
-
-Shape Shape::grown(double t) const {
-  Shape s = *this;
-  if (kind == ShapeKind::Cuboid) s.edges.array() += 2.0 * t;
-  else s.diameter += 2.0 * t;
-  return s;
-}
+int Shape::alignment_axis() const { return with_traits(kind, [&](auto t) { return decltype(t)::alignment_axis(*this); }); }
+nlohmann::json Shape::spec() const { return with_traits(kind, [&](auto t) { return decltype(t)::spec(*this); }); }
 
 double motion_bound(const Shape& shape, const Vec3& dr, const Mat3& from, const Mat3& to) {
-  // A body point at c (body frame) moves by dr + (to − from)c, and |(to − from)c| is at most
-  // Σ_k |c_k| |to_k − from_k| over the body axes k: the translation plus each axis's swing
-  // times the body's half-extent along it. A spherocylinder is its axis segment grown by its
-  // radius, so only the segment's end points count; a sphere only translates.
-  double bound = dr.norm();
-  switch (shape.kind) {
-    case ShapeKind::Sphere: break;
-    case ShapeKind::Cuboid:
-      for (int k = 0; k < 3; ++k) bound += 0.5 * shape.edges[k] * (to.col(k) - from.col(k)).norm();
-      break;
-    case ShapeKind::Spherocylinder: bound += 0.5 * shape.length * (to.col(2) - from.col(2)).norm(); break;
-  }
-  return bound;
+  // A body point at c (body frame) moves by dr + (to − from)c: the translation plus the shape's
+  // bound on |(to − from)c| over its points.
+  return dr.norm() + with_traits(shape.kind, [&](auto t) { return decltype(t)::swing(shape, from, to); });
 }
 
-const char* shape_kind_name(ShapeKind kind) {
-  switch (kind) {
-    case ShapeKind::Sphere: return "sphere";
-    case ShapeKind::Cuboid: return "cuboid";
-    case ShapeKind::Spherocylinder: return "spherocylinder";
+const char* shape_kind_name(ShapeKind kind) { return with_traits(kind, [](auto t) { return decltype(t)::name; }); }
+
+Shape parse_shape(tool::ConfigNode node) {
+  std::vector<std::string> names;
+#define ANISODYN_SHAPE_NAMES(Name)                                          \
+  names.emplace_back(ShapeTraits<ShapeKind::Name>::name);                  \
+  for (const char* alias : ShapeTraits<ShapeKind::Name>::aliases) names.emplace_back(alias);
+  ANISODYN_SHAPES(ANISODYN_SHAPE_NAMES)
+#undef ANISODYN_SHAPE_NAMES
+  const std::string type = node.choice("type", names);
+#define ANISODYN_SHAPE_PARSE(Name)                                                           \
+  {                                                                                          \
+    using T = ShapeTraits<ShapeKind::Name>;                                                  \
+    bool match = type == T::name;                                                            \
+    for (const char* alias : T::aliases) match = match || type == alias;                     \
+    if (match) return T::parse(node, type);                                                  \
   }
-  return "unknown";
+  ANISODYN_SHAPES(ANISODYN_SHAPE_PARSE)
+#undef ANISODYN_SHAPE_PARSE
+  node.fail("type", "expected a known shape type");
 }
 
 }  // namespace anisodyn

@@ -137,15 +137,6 @@ int bead_intervals(double length, double sigma_b) {
   return std::max(1, static_cast<int>(std::lround(length / (2.0 * sigma_b))));
 }
 
-HydroShape hydro_shape_of(const Shape& shape) {
-  switch (shape.kind) {
-    case ShapeKind::Sphere: return HydroShape::sphere(shape.diameter);
-    case ShapeKind::Cuboid: return HydroShape::cuboid(shape.edges);
-    case ShapeKind::Spherocylinder: return HydroShape::spherocylinder(shape.length, shape.diameter);
-  }
-  throw InputError("shape has no hydrodynamic model");
-}
-
 std::vector<Vec3> shell_beads(const HydroShape& s, double sigma_b) {
   if (!(sigma_b > 0.0)) throw InputError("bead radius must be positive");
   switch (s.kind) {

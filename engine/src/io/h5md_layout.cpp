@@ -3,6 +3,9 @@
 
 #include <algorithm>
 
+#include "anisodyn/geometry/shapes.hpp"
+#include "anisodyn/tool/json_config.hpp"
+
 namespace anisodyn::io::h5md_layout {
 
 using detail::Handle;
@@ -26,6 +29,23 @@ hsize_t frames_per_chunk(std::size_t n, std::size_t width, std::size_t elem_size
 
 bool valid_name(const std::string& name) {
   return !name.empty() && name != "." && name != ".." && name.find('/') == std::string::npos;
+}
+
+/// The species' shapes from their JSON specs (one string per species).
+std::vector<Shape> read_shape_specs(const FileReader& m, const std::string& path, std::size_t ns) {
+  Handle ds = m.dataset(path);
+  const std::vector<std::string> specs = read_string_array(ds.get(), m.path, path);
+  if (specs.size() != ns) m.bad(path, "expected " + std::to_string(ns) + " entries, got " + std::to_string(specs.size()));
+  std::vector<Shape> shapes;
+  for (std::size_t i = 0; i < ns; ++i) {
+    const std::string where = path + "[" + std::to_string(i) + "]";
+    const nlohmann::json j = nlohmann::json::parse(specs[i], nullptr, false);
+    if (j.is_discarded() || !j.is_object()) m.bad(where, "expected a shape as a JSON object, got '" + specs[i] + "'");
+    tool::ConfigNode node(j, m.path, where);
+    shapes.push_back(parse_shape(node));
+    node.finish();
+  }
+  return shapes;
 }
 
 SpeciesTable read_species_table(const FileReader& m) {
@@ -52,20 +72,24 @@ SpeciesTable read_species_table(const FileReader& m) {
   };
   if (shapes.size() != ns)
     m.bad(base + "/shape", "expected " + std::to_string(ns) + " entries, got " + std::to_string(shapes.size()));
+  std::vector<Shape> from_specs;
+  if (m.exists(base + "/shape_spec")) from_specs = read_shape_specs(m, base + "/shape_spec", ns);
   const auto edges = column("edges", 3), diameter = column("diameter", 1), length = column("length", 1),
              mass = column("mass", 1), dt = column("D_trans", 3), dr = column("D_rot", 3);
   SpeciesTable table(ns);
   for (std::size_t i = 0; i < ns; ++i) {
     Species& s = table[i];
     s.name = names[i];
-    bool ok = false;
-    s.shape.kind = shape_kind_from_name(shapes[i], ok);
-    if (!ok)
-      m.bad(base + "/shape", "unknown shape '" + shapes[i] + "' for species " + std::to_string(i) +
-                                 " (expected sphere, cuboid or spherocylinder)");
-    s.shape.edges = Vec3(edges[3 * i], edges[3 * i + 1], edges[3 * i + 2]);
-    s.shape.diameter = diameter[i];
-    s.shape.length = length[i];
+    if (!from_specs.empty()) {
+      s.shape = from_specs[i];
+    } else {  // files written before shape_spec: the kind name and the fixed columns
+      bool ok = false;
+      s.shape.kind = shape_kind_from_name(shapes[i], ok);
+      if (!ok) m.bad(base + "/shape", "unknown shape '" + shapes[i] + "' for species " + std::to_string(i));
+      s.shape.edges = Vec3(edges[3 * i], edges[3 * i + 1], edges[3 * i + 2]);
+      s.shape.diameter = diameter[i];
+      s.shape.length = length[i];
+    }
     s.mass = mass[i];
     s.D_trans = Vec3(dt[3 * i], dt[3 * i + 1], dt[3 * i + 2]);
     s.D_rot = Vec3(dr[3 * i], dr[3 * i + 1], dr[3 * i + 2]);

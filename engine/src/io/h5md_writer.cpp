@@ -71,11 +71,12 @@ struct H5mdWriter::Impl {
     Handle g = w.group(parameters.get(), "species");
     const std::size_t ns = table.size();
     const hsize_t n_h = ns;
-    std::vector<std::string> names, shapes;
+    std::vector<std::string> names, shapes, specs;
     std::vector<double> edges, diameter, length, mass, dt, dr;
     for (const auto& s : table) {
       names.push_back(s.name);
       shapes.push_back(shape_kind_name(s.shape.kind));
+      specs.push_back(s.shape.spec().dump());
       for (int k = 0; k < 3; ++k) {
         edges.push_back(s.shape.edges[k]);
         dt.push_back(s.D_trans[k]);
@@ -87,6 +88,7 @@ struct H5mdWriter::Impl {
     }
     w.string_array_dataset(g.get(), "name", names);
     w.string_array_dataset(g.get(), "shape", shapes);
+    w.string_array_dataset(g.get(), "shape_spec", specs);
     w.double_dataset(g.get(), "edges", {n_h, 3}, edges);
     w.double_dataset(g.get(), "diameter", {n_h}, diameter);
     w.double_dataset(g.get(), "length", {n_h}, length);

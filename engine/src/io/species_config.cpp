@@ -4,38 +4,10 @@
 #include <set>
 
 #include "anisodyn/core/error.hpp"
+#include "anisodyn/geometry/shapes.hpp"
 #include "anisodyn/io/species_file.hpp"
 
 namespace anisodyn {
-
-namespace {
-using ShapeParser = Shape (*)(tool::ConfigNode&);
-
-Shape parse_sphere(tool::ConfigNode& n) { return Shape::sphere(n.positive("diameter")); }
-Shape parse_cuboid(tool::ConfigNode& n) {
-  const Vec3 e = n.positive_vec3("edges");
-  return Shape::cuboid(e.x(), e.y(), e.z());
-}
-Shape parse_cube(tool::ConfigNode& n) {
-  const double a = n.positive("edge");
-  return Shape::cuboid(a, a, a);
-}
-Shape parse_spherocylinder(tool::ConfigNode& n) {
-  return Shape::spherocylinder(n.non_negative("length"), n.positive("diameter"));
-}
-
-struct ShapeRegistration {
-  const char* type;
-  ShapeParser parse;
-};
-// One line per shape type.
-const ShapeRegistration kShapeRegistry[] = {
-    {"sphere", &parse_sphere},
-    {"cuboid", &parse_cuboid},
-    {"cube", &parse_cube},
-    {"spherocylinder", &parse_spherocylinder},
-};
-}  // namespace
 
 std::string resolve_data_path(const std::string& path, const std::string& relative_to_file) {
   if (std::filesystem::path(path).is_absolute() || std::filesystem::exists(path)) return path;
@@ -101,32 +73,41 @@ DiffusionFromFile read_diffusion_from(tool::ConfigNode node, const std::optional
   return d;
 }
 
-Shape parse_shape(tool::ConfigNode node) { return tool::parse_registered(node, "type", kShapeRegistry); }
+DiffusionSpec parse_diffusion(tool::ConfigNode& node, const std::optional<Shape>& expected_shape) {
+  DiffusionSpec d;
+  if (auto from = node.optional_object("diffusion_from")) {
+    for (const char* key : {"D_trans", "D_rot"})
+      if (node.has(key)) node.fail(key, "expected either diffusion_from or explicit D_trans/D_rot, not both");
+    const DiffusionFromFile f = read_diffusion_from(*from, expected_shape);
+    d.D_trans = f.D_trans;
+    d.D_rot = f.D_rot;
+    d.shape = f.shape;
+    d.origin = f.origin;
+    return d;
+  }
+  for (const char* key : {"D_trans", "D_rot"}) {
+    if (!node.has(key)) continue;
+    const Vec3 v = node.vec3(key);
+    if (v.minCoeff() < 0.0) node.fail(key, "expected three non-negative diffusion coefficients (body axes T, W, L)");
+    (std::string(key) == "D_trans" ? d.D_trans : d.D_rot) = v;
+    d.origin = "configuration";
+  }
+  return d;
+}
 
 Species parse_species(tool::ConfigNode node, nlohmann::json* diffusion_origin) {
   Species s;
   s.name = node.string("name");
   if (s.name.empty()) node.fail("name", "expected a non-empty species name");
   s.mass = node.positive("mass", 1.0);
-  if (auto from = node.optional_object("diffusion_from")) {
-    for (const char* key : {"D_trans", "D_rot"})
-      if (node.has(key)) node.fail(key, "expected either diffusion_from or explicit D_trans/D_rot, not both");
-    const DiffusionFromFile d = read_diffusion_from(*from, node.has("shape") ? std::optional(parse_shape(node.object("shape"))) : std::nullopt);
-    s.shape = d.shape;
-    s.D_trans = d.D_trans;
-    s.D_rot = d.D_rot;
-    if (diffusion_origin) *diffusion_origin = d.origin;
-    return s;
-  }
-  if (diffusion_origin) *diffusion_origin = node.has("D_trans") || node.has("D_rot") ? nlohmann::json("configuration") : nlohmann::json();
-  s.shape = parse_shape(node.object("shape"));
-  auto non_negative_vec3 = [&](const std::string& key) {
-    const Vec3 v = node.vec3(key, Vec3::Zero());
-    if (v.minCoeff() < 0.0) node.fail(key, "expected three non-negative diffusion coefficients (body axes T, W, L)");
-    return v;
-  };
-  s.D_trans = non_negative_vec3("D_trans");
-  s.D_rot = non_negative_vec3("D_rot");
+  const bool from_file = node.has("diffusion_from");
+  const std::optional<Shape> given = node.has("shape") ? std::optional(parse_shape(node.object("shape"))) : std::nullopt;
+  const DiffusionSpec d = parse_diffusion(node, given);
+  if (!from_file && !given) parse_shape(node.object("shape"));  // the missing shape's error
+  s.shape = from_file ? *d.shape : *given;
+  s.D_trans = d.D_trans.value_or(Vec3::Zero());
+  s.D_rot = d.D_rot.value_or(Vec3::Zero());
+  if (diffusion_origin) *diffusion_origin = d.origin;
   return s;
 }
 
@@ -143,13 +124,7 @@ SpeciesTable parse_species_table(tool::ConfigNode& parent, const std::string& ke
 }
 
 nlohmann::json species_to_json(const Species& s) {
-  nlohmann::json shape;
-  switch (s.shape.kind) {
-    case ShapeKind::Sphere: shape = {{"type", "sphere"}, {"diameter", s.shape.diameter}}; break;
-    case ShapeKind::Cuboid: shape = {{"type", "cuboid"}, {"edges", {s.shape.edges.x(), s.shape.edges.y(), s.shape.edges.z()}}}; break;
-    case ShapeKind::Spherocylinder: shape = {{"type", "spherocylinder"}, {"length", s.shape.length}, {"diameter", s.shape.diameter}}; break;
-  }
-  return {{"name", s.name}, {"shape", shape}, {"mass", s.mass},
+  return {{"name", s.name}, {"shape", s.shape.spec()}, {"mass", s.mass},
           {"D_trans", {s.D_trans.x(), s.D_trans.y(), s.D_trans.z()}}, {"D_rot", {s.D_rot.x(), s.D_rot.y(), s.D_rot.z()}}};
 }
 

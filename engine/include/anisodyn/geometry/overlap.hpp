@@ -7,58 +7,19 @@
 //   - t = r_b − r_a, already minimum-imaged;
 //   - contact counts as overlap.
 //
-// Every supported pair is ONE line of kPairRegistry below: (first kind, second kind, kernel taking
-// its arguments in that order). The dispatch table is built from it at compile time and also
-// serves the swapped order (b, a) by exchanging the bodies and flipping t. Pairs without a line
-// (e.g. cuboid–spherocylinder) are unsupported: overlap_supported() reports them and overlap()
-// throws std::invalid_argument for them.
+// Every supported pair is one line of a shape header's `overlaps` (geometry/shapes/): (first kind,
+// second kind, kernel taking its arguments in that order). kPairRegistry gathers them over the
+// shape list at compile time; the dispatch table built from it also serves the swapped order
+// (b, a) by exchanging the bodies and flipping t. Pairs without a line (e.g. cuboid–spherocylinder)
+// are unsupported: overlap_supported() reports them and overlap() throws std::invalid_argument.
 #include <array>
 
 #include "anisodyn/core/types.hpp"
-#include "anisodyn/geometry/cuboid_cuboid.hpp"
-#include "anisodyn/geometry/cuboid_sphere.hpp"
-#include "anisodyn/geometry/shape.hpp"
-#include "anisodyn/geometry/sphere_sphere.hpp"
-#include "anisodyn/geometry/spherocylinder.hpp"
+#include "anisodyn/geometry/shapes.hpp"
 
 namespace anisodyn {
 
-using PairOverlapFn = bool (*)(const Shape& a, const Mat3& Ra, const Shape& b, const Mat3& Rb, const Vec3& t);
-
 namespace overlap_detail {
-
-inline bool sphere_sphere(const Shape& a, const Mat3&, const Shape& b, const Mat3&, const Vec3& t) {
-  return overlap_sphere_sphere(0.5 * a.diameter, 0.5 * b.diameter, t);
-}
-inline bool cuboid_sphere(const Shape& a, const Mat3& Ra, const Shape& b, const Mat3&, const Vec3& t) {
-  return overlap_cuboid_sphere(Ra, a.half_extents(), t, 0.5 * b.diameter);
-}
-inline bool cuboid_cuboid(const Shape& a, const Mat3& Ra, const Shape& b, const Mat3& Rb, const Vec3& t) {
-  return overlap_cuboid_cuboid(a.half_extents(), Ra, b.half_extents(), Rb, t);
-}
-inline bool spherocylinder_spherocylinder(const Shape& a, const Mat3& Ra, const Shape& b, const Mat3& Rb,
-                                          const Vec3& t) {
-  return overlap_spherocylinder_spherocylinder(0.5 * a.length, 0.5 * a.diameter, Ra.col(2), 0.5 * b.length,
-                                               0.5 * b.diameter, Rb.col(2), t);
-}
-inline bool spherocylinder_sphere(const Shape& a, const Mat3& Ra, const Shape& b, const Mat3&, const Vec3& t) {
-  return overlap_spherocylinder_sphere(0.5 * a.length, 0.5 * a.diameter, Ra.col(2), 0.5 * b.diameter, t);
-}
-
-struct PairRegistration {
-  ShapeKind first, second;
-  PairOverlapFn fn;  // takes (first, R_first, second, R_second, r_second − r_first)
-};
-
-// clang-format off
-inline constexpr PairRegistration kPairRegistry[] = {
-    {ShapeKind::Sphere,         ShapeKind::Sphere,         &sphere_sphere},
-    {ShapeKind::Cuboid,         ShapeKind::Sphere,         &cuboid_sphere},
-    {ShapeKind::Cuboid,         ShapeKind::Cuboid,         &cuboid_cuboid},
-    {ShapeKind::Spherocylinder, ShapeKind::Spherocylinder, &spherocylinder_spherocylinder},
-    {ShapeKind::Spherocylinder, ShapeKind::Sphere,         &spherocylinder_sphere},
-};
-// clang-format on
 
 // `supported` is kept separately from fn because comparing a function pointer with nullptr is not a
 // constant expression under -fsanitize (ANISODYN_SANITIZE), which would break the constexpr table.
@@ -68,6 +29,22 @@ struct DispatchEntry {
   bool swap = false;  // registered as (b, a): call fn(b, Rb, a, Ra, −t)
 };
 using DispatchTable = std::array<std::array<DispatchEntry, kShapeKindCount>, kShapeKindCount>;
+
+// Every shape's overlap tests, in the order of the shape list.
+#define ANISODYN_SHAPE_PAIR_COUNT(Name) +ShapeTraits<ShapeKind::Name>::overlaps.size()
+inline constexpr std::size_t kPairCount = 0 ANISODYN_SHAPES(ANISODYN_SHAPE_PAIR_COUNT);
+#undef ANISODYN_SHAPE_PAIR_COUNT
+
+constexpr std::array<PairRegistration, kPairCount> collect_pair_registrations() {
+  std::array<PairRegistration, kPairCount> all{};
+  std::size_t n = 0;
+#define ANISODYN_SHAPE_PAIRS(Name) \
+  for (const PairRegistration& r : ShapeTraits<ShapeKind::Name>::overlaps) all[n++] = r;
+  ANISODYN_SHAPES(ANISODYN_SHAPE_PAIRS)
+#undef ANISODYN_SHAPE_PAIRS
+  return all;
+}
+inline constexpr std::array<PairRegistration, kPairCount> kPairRegistry = collect_pair_registrations();
 
 constexpr DispatchTable make_dispatch_table() {
   DispatchTable table{};

@@ -46,8 +46,6 @@ struct HydroShape {
   }
 };
 
-/// The hydrodynamic shape of a geometry-module shape (sphere, cuboid, spherocylinder).
-HydroShape hydro_shape_of(const Shape& shape);
 
 /// Bead centres of the shell at bead radius sigma_b (the default construction, "surface_grid").
 std::vector<Vec3> shell_beads(const HydroShape& shape, double sigma_b);

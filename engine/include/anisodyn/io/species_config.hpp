@@ -13,6 +13,7 @@
 // spherocylinder {length, diameter}. Diffusion coefficients default to zero (MC does not need
 // them; the dynamics engines check that they are set).
 #include "anisodyn/tool/json_config.hpp"
+#include "anisodyn/geometry/shapes.hpp"
 #include "anisodyn/system/species.hpp"
 
 #include <optional>
@@ -34,7 +35,18 @@ bool same_shape(const Shape& a, const Shape& b);
 /// expected_shape when given.
 DiffusionFromFile read_diffusion_from(tool::ConfigNode node, const std::optional<Shape>& expected_shape);
 
-Shape parse_shape(tool::ConfigNode node);
+/// The diffusion coefficients of a species entry or of an engine's per-species override: explicit
+/// `D_trans` / `D_rot` (three non-negative values each, body axes T, W, L) or `diffusion_from` (a
+/// species file entry, whose shape comes with it), never both. One parser for every place that
+/// takes diffusion coefficients.
+struct DiffusionSpec {
+  std::optional<Vec3> D_trans, D_rot;  // absent: not given
+  std::optional<Shape> shape;          // from diffusion_from
+  nlohmann::json origin;               // the file entry, "configuration" for explicit values, null for none
+};
+/// `expected_shape`: checked against a diffusion_from entry's shape when given.
+DiffusionSpec parse_diffusion(tool::ConfigNode& node, const std::optional<Shape>& expected_shape = std::nullopt);
+
 /// With diffusion_origin given, it receives where the diffusion coefficients came from (the origin
 /// of diffusion_from, or "configuration" for explicit values, null for none).
 Species parse_species(tool::ConfigNode node, nlohmann::json* diffusion_origin = nullptr);
