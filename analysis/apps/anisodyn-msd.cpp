@@ -2,6 +2,7 @@
 // parallel/perpendicular to a director, field or the particle's own axis, body-frame components;
 // non-Gaussian parameter, apparent exponent, long-time D with its fit window. See docs/analysis.md.
 #include <cstdio>
+#include <optional>
 
 #include "anisodyn/analysis/msd.hpp"
 #include "anisodyn/analysis/species_selection.hpp"
@@ -25,6 +26,30 @@ void add_component_columns(Table& t, const MsdComponent& c) {
   t.add("beta_" + n + "_se", "1", "standard error of beta_" + n + " from per-replica exponents", c.beta_error);
 }
 
+/// The free-particle diffusion coefficient of a component, from the trajectory's species table
+/// (infinite dilution, body axes T, W, L): the orientational average tr(D)/3 for the total and
+/// the lab axes, D_k for a body axis; none for par/perp, which depend on the orientations.
+std::optional<double> free_diffusion(const std::string& component, const Species& species) {
+  const Vec3& D = species.D_trans;
+  if (!(D.minCoeff() > 0.0)) return std::nullopt;  // not set in the trajectory
+  if (component == "tot" || component == "x" || component == "y" || component == "z") return D.sum() / 3.0;
+  if (component.rfind("body_", 0) == 0) return D[component.back() - 'x'];  // body_x, body_y, body_z
+  return std::nullopt;
+}
+
+void write_free_diffusion(StageRun& run, const SelectedSpecies& sp, const MsdComponent& c) {
+  const auto d0 = free_diffusion(c.name, sp.properties);
+  if (!d0) return;
+  const nlohmann::json details = {{"source", "D_trans of species " + sp.name + " in the species table of " + run.inputs.front()},
+                                  {"D_trans", {sp.properties.D_trans.x(), sp.properties.D_trans.y(), sp.properties.D_trans.z()}}};
+  run.out.scalar({"D0_" + c.name + "_" + sp.name, *d0, 0.0, "length^2/tau",
+                  c.name.rfind("body_", 0) == 0 ? "free-particle D along the body axis (infinite dilution)"
+                                                : "free-particle D = tr(D_trans)/3 (infinite dilution, orientational average)",
+                  details});
+  run.out.scalar({"D_over_D0_" + c.name + "_" + sp.name, c.diffusion.value / *d0, c.diffusion.error / *d0, "1",
+                  "D_" + c.name + " / D0_" + c.name + " (error from D's alone: D0 is an input)", details});
+}
+
 void write_results(StageRun& run, const SelectedSpecies& sp, const MsdResult& r) {
   Table& t = run.out.table("msd_" + sp.name, "MSD family of species " + sp.name + " (spec 50 section 1)");
   t.add("time", "tau", "lag time t (mean over the pairs of the lag class and the replicas)", r.lag);
@@ -43,6 +68,7 @@ void write_results(StageRun& run, const SelectedSpecies& sp, const MsdResult& r)
                  {"mean_beta_in_window", r.fit_mean_beta}, {"beta_within_0.05_of_1", std::abs(r.fit_mean_beta - 1.0) <= 0.05},
                  {"samples", r.samples}};
     run.out.scalar(s);
+    write_free_diffusion(run, sp, c);
   }
   for (std::size_t k = 0; k < r.directors.size(); ++k) {
     nlohmann::json details = {{"director", {r.directors[k].x(), r.directors[k].y(), r.directors[k].z()}}};

@@ -12,7 +12,7 @@ std::vector<SelectedSpecies> select_species(const std::string& first_input, cons
   std::string known;
   for (std::size_t s = 0; s < table.size(); ++s) {
     known += (known.empty() ? "" : ", ") + table[s].name;
-    if (requested.empty() || table[s].name == requested) out.push_back({table[s].name, static_cast<int>(s)});
+    if (requested.empty() || table[s].name == requested) out.push_back({table[s].name, static_cast<int>(s), table[s]});
   }
   if (out.empty()) throw InputError(config_file, key, "unknown species '" + requested + "' (" + first_input + " has: " + known + ")");
   return out;

@@ -11,6 +11,7 @@ namespace anisodyn::analysis {
 struct SelectedSpecies {
   std::string name;
   int index = -1;
+  Species properties;  // its entry of the first input's species table (shape, D_trans, D_rot)
 };
 
 /// `requested` empty → all species of the first input; otherwise that one (unknown → InputError
