@@ -285,15 +285,42 @@ void run_dbscan(StageRun& run) {
                    r.eps_factors[k], r.bu_max[k].value, r.bu_max[k].error, r.used[k]);
 }
 
+tool::Description description() {
+  using tool::optional;
+  return analysis_description(
+      {tool::required("mode", "string", "nematic | dipolar | dbscan"),
+       optional("species", "string", nullptr, "the species to cluster (none: the only species of the file)"),
+       optional("axis", "string", nullptr, "nematic (required there): body axis T | W | L"),
+       optional("K1", "number", 0.85, "nematic: |e_i.e_j| > K1"),
+       optional("K2", "number", 0.90, "nematic: U_local > K2"),
+       optional("K_par", "number", nullptr, "nematic (required there): |r_par| < K_par"),
+       optional("K_perp", "number", nullptr, "nematic (required there): |r_perp| < K_perp"),
+       optional("cos_bins", "integer", 20, "nematic: bins of |cos theta| of cluster directors"),
+       optional("gamma", "number", nullptr, "dipolar, dbscan (required there): dipolar coupling"),
+       optional("sigma", "number", 1.0, "dipolar, dbscan: cube edge"),
+       optional("bu_max", "number", -3.20, "dipolar: bond threshold beta u_ij < bu_max"),
+       optional("field_direction", "array", nlohmann::json::array({0, 0, 1}), "dipolar, dbscan: the field direction"),
+       optional("transition_times", "array", nullptr, "dipolar: times t_1 of transition matrices"),
+       optional("transition_at_x2_maximum", "boolean", false, "dipolar: also a transition matrix at the maximum of X(2, t)"),
+       optional("transition_lag", "number", 0.3, "dipolar: lag of transition matrices"),
+       optional("transition_window", "number", 0.05, "dipolar: frames within +- this fraction of t_1 are pooled"),
+       optional("transition_lag_tolerance", "number", 0.1, "dipolar: relative tolerance of the lag between frames"),
+       optional("plateau_fraction", "number", 0.25, "dipolar: last fraction of the run that is the X_c plateau"),
+       optional("max_chain_length", "integer", 0, "dipolar: size class that holds all longer chains (0: none)"),
+       optional("min_pts", "integer", 10, "dbscan: MinPts"),
+       optional("eps", "number", nullptr, "dbscan: Eps (none: the knee of the sorted k-NN distances)"),
+       optional("r_max", "number", nullptr, "dbscan: neighbour search radius (none: 2 sigma)"),
+       optional("eps_factors", "array", nlohmann::json::array({0.7, 1, 1.4}), "dbscan: factors of Eps")},
+      "by mode: nematic cluster sizes and directors, dipolar chain statistics, transition matrices and the Wertheim fit, "
+      "or the DBSCAN bond thresholds");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const tool::ToolInfo info{
       "anisodyn-clusters", "cluster analyses: nematic-like HBP clusters, dipolar chains of cubes, DBSCAN calibration of the bond threshold",
-      "Configuration keys: inputs, csv, mode (nematic | dipolar | dbscan), species; nematic: axis (T W L), K1, K2, K_par, K_perp, "
-      "cos_bins; dipolar: gamma, sigma, bu_max, field_direction, transition_times, transition_at_x2_maximum, "
-      "transition_lag, transition_window, transition_lag_tolerance, plateau_fraction, max_chain_length; dbscan: gamma, sigma, "
-      "field_direction, min_pts, eps, r_max, eps_factors. All modes: window {from, to, stride}. See docs/analysis.md."};
+      "Each mode reads only its own keys (docs/analysis.md).", description()};
   return run_analysis_stage(argc, argv, info, [](StageRun& run) {
     const std::string mode = run.cfg.choice("mode", {"nematic", "dipolar", "dbscan"});
     if (mode == "nematic") run_nematic(run);

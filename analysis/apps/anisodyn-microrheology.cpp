@@ -207,15 +207,42 @@ void run_active(StageRun& run) {
     std::fprintf(stderr, "anisodyn-microrheology: no bath particles: no density map\n");
 }
 
+tool::Description description() {
+  using tool::optional;
+  return analysis_description(
+      {tool::required("mode", "string", "passive | active"),
+       tool::required("species", "string", "the tracer species"),
+       optional("radius", "number", nullptr, "tracer radius (or tracer_diameter; none: half the sphere's diameter)"),
+       optional("tracer_diameter", "number", nullptr, "tracer diameter (or radius)"),
+       optional("kT", "number", 1.0, "passive: thermal energy; active: converts force into beta_force"),
+       optional("alpha_fit_decades", "number", 0.25, "passive: half width of the local fit of alpha"),
+       optional("fit", "object", nullptr, "passive: {t_min, t_max} of the D_long fit (none: as anisodyn-msd)"),
+       optional("evans_t_max", "number", nullptr, "passive: end of the Evans sum (none: the end of the D_long window)"),
+       optional("beta_force", "number", nullptr, "active: the force beta F (or force, or pe; none: the run's tracer.pe)"),
+       optional("force", "number", nullptr, "active: the force F, with kT"),
+       optional("pe", "number", nullptr, "active: the Peclet number"),
+       optional("D_s", "number", nullptr, "active: tracer diffusion coefficient (none: from the species table)"),
+       optional("direction", "array", nullptr, "active: the pulling direction, a box axis (none: the run's tracer axis)"),
+       optional("steady_distance", "number", nullptr, "active: distance after which the motion is steady (none: 2 sigma)"),
+       optional("steady_from", "number", nullptr, "active: time from which the motion is steady (instead of steady_distance)"),
+       optional("position_source", "string", "auto", "active: auto | frames | observable"),
+       optional("density_map", "boolean", true, "active: the density map around the tracer"),
+       optional("bath_species", "string", nullptr, "active: species of the density map (none: every other species)"),
+       optional("bin_width", "number", 0.25, "active: bin width of the density map"),
+       optional("dz_bin", "number", nullptr, "active: bin width along the force (none: bin_width)"),
+       optional("rho_bin", "number", nullptr, "active: radial bin width (none: bin_width)"),
+       optional("on_axis_radius", "number", 0.5, "active: radius of the on-axis profile"),
+       optional("wake_threshold", "number", 0.9, "active: density ratio that ends the wake"),
+       optional("order_axis", "string", "L", "active: body axis of the local order (T | W | L | none)")},
+      "passive: table moduli (Mason, second-order GSER, Evans); active: friction, density map, on-axis profile, wake length",
+      lag_grid_parameters("passive"));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const tool::ToolInfo info{"anisodyn-microrheology", "passive (GSER and compliance) and active (pulled tracer) microrheology over replicas",
-                          "Configuration keys: inputs, csv, mode (passive | active), species (the tracer). "
-                          "passive: radius | tracer_diameter, kT, alpha_fit_decades, lags_per_decade, max_origins, fit {t_min, t_max}, evans_t_max. "
-                          "active: beta_force | force (+ kT) | pe (+ radius | tracer_diameter), D_s, direction, bath_species, steady_distance, "
-                          "steady_from, position_source (auto | frames | observable), density_map, bin_width | dz_bin, rho_bin, on_axis_radius, "
-                          "wake_threshold, order_axis (T W L | none). Both: window {from, to, stride}. See docs/analysis.md."};
+                            "Each mode reads only its own keys (docs/analysis.md).", description()};
   return run_analysis_stage(argc, argv, info, [](StageRun& run) {
     const std::string mode = run.cfg.choice("mode", {"passive", "active"});
     if (mode == "passive") run_passive(run);

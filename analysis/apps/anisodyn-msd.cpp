@@ -82,13 +82,27 @@ void write_results(StageRun& run, const SelectedSpecies& sp, const MsdResult& r)
                  r.fit_mean_beta, r.ngp_constant.c_str());
 }
 
+tool::Description description() {
+  using tool::optional;
+  return analysis_description(
+      {optional("species", "string", nullptr, "the species to analyse (none: every species)"),
+       optional("reference", "string", "axes", "axes | director | field | vector | particle_axis: the frame of the components"),
+       optional("direction", "array", nullptr, "the direction of reference field or vector"),
+       optional("axis", "string", "auto", "body axis T | W | L of reference director (auto: largest U) or particle_axis (L)"),
+       optional("director_species", "string", nullptr, "for spheres with reference director: the species whose director they use"),
+       optional("body_frame", "boolean", false, "also the body-frame cumulative displacement components"),
+       optional("fit", "object", nullptr, "{t_min, t_max} of the D fit (none: the last decade of lags with >= 20 origins)"),
+       optional("ngp_constant", "string", "auto", "auto | isotropic | anisotropic constant of the non-Gaussian parameter"),
+       optional("beta_smoothing_decades", "number", 0.1, "half width of the local log-log fit of beta(t)")},
+      "tables msd_<species> (MSD, NGP, beta per component) and scalars D_<component>_<species>",
+      lag_grid_parameters());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const tool::ToolInfo info{"anisodyn-msd", "mean-squared displacements, non-Gaussian parameter and diffusion coefficients over replicas",
-                          "Configuration keys: inputs, species, reference (axes | director | field | particle_axis), "
-                          "direction, axis (T W L | auto), director_species (spheres: whose director), body_frame, lags_per_decade, max_origins, fit {t_min, t_max}, "
-                          "ngp_constant, beta_smoothing_decades, window {from, to, stride}, csv. See docs/analysis.md."};
+                            "See docs/analysis.md.", description()};
   return run_analysis_stage(argc, argv, info, [](StageRun& run) {
     const MsdSettings settings = parse_msd_settings(run.cfg);
     run.cfg.finish();

@@ -62,13 +62,24 @@ void write_results(StageRun& run, const OrderStageSettings& settings, const Sele
                  r.largest_eigenvalue, r.isotropic_baseline, phase.c_str(), axis_letter(r.main_axis), b2);
 }
 
+tool::Description description() {
+  using tool::optional;
+  return analysis_description(
+      {optional("species", "string", nullptr, "the species to analyse (none: every anisotropic species)"),
+       optional("observables", "array", nlohmann::json::array({"U", "B2", "S_rod", "S_cube"}), "order parameters to compute"),
+       optional("main_axis", "string", "auto", "T | W | L | auto (largest run-averaged U of the first replica)"),
+       optional("rod_axis", "string", "L", "body axis of S_rod"),
+       optional("field_direction", "array", nlohmann::json::array({0, 0, 1}), "reference direction of S_cube"),
+       optional("chain_threshold", "object", nullptr, "{gamma, sigma, bu_max}: splits S_cube into chains and free cubes"),
+       optional("average_from", "number", nullptr, "start time of the run averages (none: the first frame)")},
+      "table order_<species> (time series) and scalars: run averages, isotropic baseline, phase verdict");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const tool::ToolInfo info{"anisodyn-order", "orientational order parameters over time, run averages and the phase verdict",
-                          "Configuration keys: inputs, species, observables [U, B2, S_rod, S_cube], main_axis (T W L | auto), "
-                          "rod_axis, field_direction, chain_threshold {gamma, sigma, bu_max}, average_from, window {from, to, stride}, csv. "
-                          "See docs/analysis.md."};
+                            "See docs/analysis.md.", description()};
   return run_analysis_stage(argc, argv, info, [](StageRun& run) {
     const OrderStageSettings settings = parse_order_settings(run.cfg);
     run.cfg.finish();

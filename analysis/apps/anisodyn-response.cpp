@@ -73,13 +73,26 @@ void write_results(StageRun& run, const ResponseSettings& s, const SelectedSpeci
                  r.off.retained.error, r.off95.retained.value, r.off95.retained.error);
 }
 
+tool::Description description() {
+  using tool::optional;
+  return analysis_description(
+      {optional("species", "string", nullptr, "the species to analyse (none: every anisotropic species)"),
+       optional("signal", "string", "B2", "B2 | U_L | U_W | U_T | S_cube: the order parameter that responds"),
+       optional("main_axis", "string", "auto", "main axis of B2 (signal B2): T | W | L | auto"),
+       optional("field_direction", "array", nullptr, "reference direction of S_cube (signal S_cube; none: the run's field)"),
+       optional("switch_on", "number", nullptr, "switch-on time (none: each replica's field_switches observable)"),
+       optional("switch_off", "number", nullptr, "switch-off time (with switch_on)"),
+       optional("cycle", "integer", 0, "which on-off cycle of field_switches to analyse"),
+       optional("smoothing_fraction", "number", 0.01, "smoothing window as a fraction of the segment length"),
+       optional("outlier_threshold", "number", 3.5, "modified Z-score above which a replica is rejected")},
+      "tables response_<species> (per replica) and response_curve_<species>; scalars t_on, t_off, t_off95");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const tool::ToolInfo info{"anisodyn-response", "switching response times t_ON, t_OFF with outlier rejection over trajectories",
-                          "Configuration keys: inputs, species, signal (B2 | U_L | U_W | U_T | S_cube), main_axis (T W L | auto), "
-                          "field_direction, switch_on, switch_off, cycle, smoothing_fraction, outlier_threshold, window {from, to, stride}, csv. "
-                          "See docs/analysis.md."};
+                            "See docs/analysis.md.", description()};
   return run_analysis_stage(argc, argv, info, [](StageRun& run) {
     const ResponseSettings settings = parse_response_settings(run.cfg);
     run.cfg.finish();

@@ -45,12 +45,22 @@ void write_results(StageRun& run, const SelectedSpecies& sp, const RotationResul
   }
 }
 
+tool::Description description() {
+  using tool::optional;
+  return analysis_description(
+      {optional("species", "string", nullptr, "the species to analyse (none: every species)"),
+       optional("axes", "array", nlohmann::json::array({"T", "W", "L"}), "body axes"),
+       optional("fit", "object", nullptr, "{t_min, t_max} of the MSAD fit (none: first lag to run/20)"),
+       optional("correlation_floor", "number", 0.05, "C_n fits use the lags with C_n >= this")},
+      "table rotation_<species> (MSAD, C1, C2 per axis) and scalars Dr_msad_<axis>_<species>, Dr_C1_..., Dr_C2_...",
+      lag_grid_parameters());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const tool::ToolInfo info{"anisodyn-rotation", "rotational MSAD and Legendre correlations per body axis, with D_r",
-                          "Configuration keys: inputs, species, axes ([\"T\", \"W\", \"L\"]), lags_per_decade, max_origins, "
-                          "fit {t_min, t_max}, correlation_floor, window {from, to, stride}, csv. See docs/analysis.md."};
+                            "See docs/analysis.md.", description()};
   return run_analysis_stage(argc, argv, info, [](StageRun& run) {
     const RotationSettings settings = parse_rotation_settings(run.cfg);
     run.cfg.finish();

@@ -48,13 +48,27 @@ void write_profile(StageRun& run, const PairStructureResult& r, const SlabProfil
   }
 }
 
+tool::Description description() {
+  using tool::optional;
+  return analysis_description(
+      {optional("pairs", "array", nullptr, "species pairs [[A, B], ...] (none: each species with itself)"),
+       optional("dr", "number", 0.05, "bin width"),
+       optional("r_max", "number", nullptr, "largest distance (none: half the smallest box edge)"),
+       optional("reference", "string", "field", "field | director | none: the axis of g_par and g_perp"),
+       optional("direction", "array", nlohmann::json::array({0, 0, 1}), "the field direction (reference field)"),
+       optional("axis", "string", "auto", "body axis of the director (reference director)"),
+       optional("director_species", "string", nullptr, "the species whose director is the reference (reference director)"),
+       optional("cylinder_radius", "number", 0.5, "R_par of g_par"),
+       optional("slab_half_height", "number", 0.5, "h_perp of g_perp"),
+       optional("slab_bins", "integer", 50, "slabs per axis of the density profiles")},
+      "tables structure_<A>_<B> (g, coordination, g_par, g_perp) and slab_<species>");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const tool::ToolInfo info{"anisodyn-structure", "radial and directional pair correlations and slab density profiles",
-                          "Configuration keys: inputs, pairs [[A, B], ...], dr, r_max, reference (field | director | none), "
-                          "direction, axis (T W L | auto), director_species, cylinder_radius, slab_half_height, slab_bins, "
-                          "window {from, to, stride}, csv. See docs/analysis.md."};
+                            "See docs/analysis.md.", description()};
   return run_analysis_stage(argc, argv, info, [](StageRun& run) {
     const PairStructureSettings settings = parse_structure_settings(run.cfg);
     run.cfg.finish();

@@ -9,11 +9,29 @@
 using namespace anisodyn;
 using namespace anisodyn::analysis;
 
+namespace {
+
+tool::Description description() {
+  using tool::optional;
+  return analysis_description(
+      {optional("species", "string", nullptr, "the species to analyse (none: every species)"),
+       tool::required("times", "array", "lag times (the nearest lag class is used)"),
+       optional("components", "array", nlohmann::json::array({"tot", "x", "y", "z"}), "any of tot, x, y, z, par, perp"),
+       optional("direction", "array", nlohmann::json::array({0, 0, 1}), "the reference direction of par and perp"),
+       optional("bin_width", "number", nullptr, "translational bin width (none: 0.02 <dr^2>^1/2 of the first replica)"),
+       optional("bins", "integer", 500, "translational bins"),
+       optional("angular_axes", "array", nullptr, "body axes (T, W, L) of angular van Hove functions (none: no angular ones)"),
+       optional("angular_bin_width", "number", 0.02, "angular bin width (rad)"),
+       optional("angular_dimension", "integer", 2, "dimension of the angular Gaussian reference (1, 2 or 3)")},
+      "table vanhove_<species> (long format, with the Gaussian reference) and the scalar vanhove_curves_<species>",
+      lag_grid_parameters());
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   const tool::ToolInfo info{"anisodyn-vanhove", "self van Hove functions (translational and angular) with Gaussian references",
-                          "Configuration keys: inputs, species, times (required), components (tot x y z par perp), direction, "
-                          "bin_width, bins, angular_axes ([\"T\", \"W\", \"L\"]), angular_bin_width, angular_dimension, "
-                          "lags_per_decade, max_origins, window {from, to, stride}, csv. See docs/analysis.md."};
+                            "See docs/analysis.md.", description()};
   return run_analysis_stage(argc, argv, info, [](StageRun& run) {
     const VanHoveSettings settings = parse_van_hove_settings(run.cfg);
     run.cfg.finish();

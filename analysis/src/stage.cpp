@@ -1,6 +1,7 @@
 #include "anisodyn/analysis/stage.hpp"
 
 #include <cstdio>
+#include <utility>
 
 #include "anisodyn/core/error.hpp"
 #include "anisodyn/tool/atomic_file.hpp"
@@ -33,6 +34,29 @@ std::vector<double> StageRun::each_replica(const TrajectoryNeeds& needs,
 
 void StageRun::fail(const std::string& key, const std::string& problem) const {
   throw InputError(opt.config_name(), key, problem);
+}
+
+std::vector<tool::Parameter> lag_grid_parameters(const std::string& mode) {
+  const std::string when = mode.empty() ? "" : mode + ": ";
+  return {tool::optional("lags_per_decade", "number", 10, when + "lag grid density (0: every lag)"),
+          tool::optional("max_origins", "integer", 0, when + "thinning of time origins (0: every origin)")};
+}
+
+tool::Description analysis_description(std::vector<tool::Parameter> parameters, const std::string& output_meaning,
+                                       const std::vector<tool::Parameter>& more) {
+  tool::Description d;
+  d.role = tool::Role::Analysis;
+  d.replica = false;
+  d.inputs = {"trajectory", 1, -1, "trajectories (H5MD), one per replica; shell globs allowed; or the key inputs"};
+  d.output = {"analysis", "HDF5 + CSV", output_meaning + "; CSV files beside it unless csv is false", nullptr};
+  d.parameters = std::move(parameters);
+  d.parameters.insert(d.parameters.end(), more.begin(), more.end());
+  d.parameters.push_back(tool::optional("inputs", "array", nullptr, "trajectory paths or globs, in addition to --input"));
+  d.parameters.push_back(tool::optional("csv", "boolean", true, "write CSV files beside the HDF5 output"));
+  d.parameters.push_back(tool::optional("window", "object", nullptr,
+                                        "time window {from, to, stride} of the analysed frames (none: every frame)"));
+  d.cost = tool::negligible_cost("analysis jobs are short next to the engine jobs they read");
+  return d;
 }
 
 int run_analysis_stage(int argc, char** argv, const tool::ToolInfo& info, const std::function<void(StageRun&)>& body) {

@@ -11,11 +11,34 @@
 
 using namespace anisodyn;
 
+namespace {
+
+tool::Description description() {
+  tool::Description d;
+  d.role = tool::Role::Builder;
+  d.replica = true;
+  d.inputs = {"state", 0, 1, "an existing state to insert the new particles into (its box and particles are kept)"};
+  d.output = {"state", "H5MD", "one frame: the configuration", {{"sum_over", "composition"}, {"key", "count"}}};
+  d.parameters = {
+      tool::seed_parameter(),
+      tool::optional("species", "array", nullptr,
+                     "the species table: {name, shape, mass, D_trans, D_rot} or {name, diffusion_from: {file, species}}; "
+                     "required unless inserting into --input"),
+      tool::required("composition", "array", "particles to place: {species, count, orientation {mode, axis, director, random_azimuth}}"),
+      tool::optional("box", "object", nullptr,
+                     "{edges} or {packing_fraction, aspect}; required unless inserting into --input (whose box is kept)"),
+      tool::optional("placement", "string", "lattice", "lattice | random (random when inserting into --input)"),
+      tool::optional("max_attempts_per_particle", "integer", 10000, "bound on the attempts per particle of random placement"),
+  };
+  d.cost = tool::negligible_cost("a configuration takes well under a second to seconds");
+  return d;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
-  const tool::ToolInfo info{"anisodyn-config", "build an initial configuration and write it as H5MD",
-                          "Configuration keys: seed, species[], composition[] {species, count, orientation {mode, axis, "
-                          "director, random_azimuth}}, box {edges | packing_fraction, aspect}, placement (lattice|random), "
-                          "max_attempts_per_particle. See docs/config.md."};
+  const tool::ToolInfo info{"anisodyn-config", "build an initial configuration and write it as H5MD", "See docs/config.md.",
+                            description()};
   return tool::run_tool(argc, argv, info, [&](tool::CommonOptions& opt) {
     if (opt.output.empty()) throw InputError("command line", "--output", "an output file (state.h5)");
     if (opt.inputs.size() > 1) throw InputError("command line", "--input", "at most one input state to insert into");

@@ -5,6 +5,7 @@
 //   anisodyn-h5md-example OUTPUT.h5 [--particles N] [--frames F] [--seed S]
 //
 // Prints a JSON summary (particle count, frames, box edges, steps and times) on stdout.
+// --describe prints its description (tool/description.hpp) and exits, as for every executable.
 #include <cstdlib>
 #include <iostream>
 #include <string>
@@ -15,12 +16,25 @@
 #include "anisodyn/core/quaternion.hpp"
 #include "anisodyn/core/rng.hpp"
 #include "anisodyn/tool/atomic_file.hpp"
+#include "anisodyn/tool/command_line.hpp"
 #include "anisodyn/io/h5md.hpp"
 #include "anisodyn/tool/provenance.hpp"
 
 using namespace anisodyn;
 
 namespace {
+
+tool::ToolInfo info() {
+  tool::Description d;
+  d.role = tool::Role::Example;
+  d.inputs = {"none", 0, 0, "none"};
+  d.output = {"trajectory", "H5MD", "an example trajectory (positional OUTPUT, not --output): two species, an NPT-like box, "
+                                   "observables sampled more and less often than frames", nullptr};
+  // Takes no configuration file: --particles N, --frames F and --seed S on its own command line.
+  d.cost = tool::negligible_cost("milliseconds");
+  return {"anisodyn-h5md-example", "an example H5MD trajectory for checking external readers",
+          "usage: anisodyn-h5md-example OUTPUT.h5 [--particles N] [--frames F] [--seed S]", d};
+}
 
 long parse_count(const std::string& option, const char* text) {
   char* end = nullptr;
@@ -38,7 +52,10 @@ int run(int argc, char** argv) {
       const long v = parse_count(a, argv[++i]);
       (a == "--particles" ? n : a == "--frames" ? frames : seed) = v;
     } else if (a == "--help" || a == "-h") {
-      std::cout << "usage: anisodyn-h5md-example OUTPUT.h5 [--particles N] [--frames F] [--seed S]\n";
+      std::cout << info().usage_notes << "\n";
+      return 0;
+    } else if (a == "--describe") {
+      std::cout << tool::describe(info()).dump(2) << std::endl;
       return 0;
     } else if (!a.empty() && a[0] != '-' && output.empty()) {
       output = a;

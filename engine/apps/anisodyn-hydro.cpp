@@ -88,16 +88,35 @@ void print_summary(const std::string& name, const DiffusionTensorResult& r) {
   std::fflush(stdout);
 }
 
+tool::Description description() {
+  tool::Description d;
+  d.role = tool::Role::Tensors;
+  d.replica = false;
+  d.inputs = {"none", 0, 0, "none: the shapes come from the configuration"};
+  d.output = {"species", "JSON, or HDF5 for a .h5 output",
+              "a species file (D_trans, D_rot, tensors and the shell series per species) that config and dmc read through "
+              "diffusion_from", nullptr};
+  d.parameters = {
+      tool::required("species", "array", "{name, shape, and optionally shells | bead_radii, construction, extrapolation}"),
+      tool::optional("shells", "object", nlohmann::json{{"count", 5}, {"max_beads", 6000}, {"size_ratio", 2.0}},
+                     "the shell series of every species that gives none: {count, max_beads, size_ratio}"),
+      tool::optional("bead_radii", "array", nullptr, "explicit bead radii (>= 3 distinct) instead of shells"),
+      tool::optional("symmetry", "boolean", true, "use the mirror-symmetry block split when the shell allows it"),
+      tool::optional("construction", "string", "surface_grid", "surface_grid | cell_centres, for species that give none"),
+      tool::optional("extrapolation", "string", "auto", "auto | linear | quadratic fit to zero bead size, for species that give none"),
+  };
+  d.cost = {{"kind", "not_estimated"},
+            {"why", "seconds to minutes per species (docs/hydro.md gives timings); the runner's estimate leaves it out"}};
+  return d;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const tool::ToolInfo info{"anisodyn-hydro", "infinite-dilution diffusion tensors of rigid particles from shell models",
-                          "Configuration keys: species[] {name, shape, shells | bead_radii, construction, extrapolation}, shells "
-                          "{count, max_beads, size_ratio}, bead_radii, symmetry, construction (surface_grid | cell_centres), "
-                          "extrapolation (auto | linear | quadratic; auto, the default, picks per species the fit with the smaller "
-                          "error estimate). The output is a species file: JSON, or HDF5 when it ends "
-                          "in .h5. Units: lengths in the shape's unit ℓ, D_trans in ℓ²/τ, D_rot in rad²/τ, with "
-                          "τ = ηℓ³/k_BT. See docs/hydro.md."};
+                            "The output is a species file: JSON, or HDF5 when it ends in .h5. Units: lengths in the shape's "
+                            "unit ℓ, D_trans in ℓ²/τ, D_rot in rad²/τ, with τ = ηℓ³/k_BT. See docs/hydro.md.",
+                            description()};
   return tool::run_tool(argc, argv, info, [&](tool::CommonOptions& opt) {
     if (!opt.inputs.empty()) throw InputError("--input", "", "anisodyn-hydro takes no input file (shapes come from --config)");
     if (opt.output.empty()) throw InputError("--output", "", "expected an output species file (.json or .h5)");

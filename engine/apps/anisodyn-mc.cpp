@@ -45,12 +45,39 @@ std::map<std::string, Series> read_observables(const io::H5mdReader& r) {
   return out;
 }
 
+tool::Description description() {
+  tool::Description d;
+  d.role = tool::Role::Engine;
+  d.replica = true;
+  d.inputs = {"state", 1, 1, "the starting state (its last frame)"};
+  d.output = {"trajectory", "H5MD", "stored frames (always the final state), observables every sample_every cycles, the summary", nullptr};
+  d.parameters = {
+      tool::seed_parameter(),
+      tool::optional("target_acceptance", "number", 0.35, "target acceptance of move-size tuning (only when a phase tunes)"),
+      tool::optional("tune_every", "integer", 100, "cycles between tuning updates (only when a phase tunes)"),
+      tool::optional("sample_every", "integer", 10, "cycles between observable samples"),
+      tool::optional("frame_every", "integer", 0, "cycles between stored frames (0: the final frame only)"),
+      tool::optional("field", "object", nullptr,
+                     "orientational field on for the whole run: {direction, orientational {strength, axis}} (docs/run.md)"),
+      tool::required("phases", "array", "the protocol: phases {type: compress | npt | nvt, ...} run in order (docs/mc.md)"),
+  };
+  // Work of a job = particles of its system x the cycles of its phases; the rate is the single-core
+  // throughput of bench/mc_throughput.cpp measured 2026-11-22 (docs/performance.md, "MC throughput").
+  d.cost = {{"kind", "model"},
+            {"work", "trial moves"},
+            {"amount", {"particles", {{"rule", "mc_phases"}, {"default_max_cycles", 1000000}}}},  // parse_phase's default
+            {"rate", 9.57e5},
+            {"measured", "bench/mc_throughput.cpp, 2026-11-22: 2000 boards 12x3.46x1 at eta = 0.20, one core, "
+                         "median of 7 repetitions (docs/performance.md)"},
+            {"note", "a compression phase counts at its max_cycles (10^6 when not given): an upper bound"}};
+  return d;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  const tool::ToolInfo info{"anisodyn-mc", "Metropolis MC equilibration and compression of hard particles",
-                          "Configuration keys: seed, target_acceptance, tune_every, sample_every, frame_every, field "
-                          "{strength, axis, direction}, phases[] (compress | npt | nvt). See docs/mc.md."};
+  const tool::ToolInfo info{"anisodyn-mc", "Metropolis MC equilibration and compression of hard particles", "See docs/mc.md.",
+                            description()};
   return tool::run_tool(argc, argv, info, [&](tool::CommonOptions& opt) {
     const std::string& input = tool::require_one_input_and_output(opt);
 

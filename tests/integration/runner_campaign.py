@@ -24,7 +24,7 @@ import time
 
 bin_dir, tmp, source = sys.argv[1], sys.argv[2], sys.argv[3]
 sys.path.insert(0, os.path.join(source, "workflows"))
-from anisodyn_run import cost  # noqa: E402
+from anisodyn_run.describe import Tools  # noqa: E402
 from anisodyn_run.compare import differences  # noqa: E402
 
 shutil.rmtree(tmp, ignore_errors=True)
@@ -184,9 +184,9 @@ _, err = proc.communicate(timeout=120)
 check(proc.returncode == 130 and "run the same command again to resume" in err, f"SIGINT: exit 130 with a resume hint (got {proc.returncode})")
 check(last_run(interrupted)["interrupted"] >= 1, f"the interrupted job is recorded {last_run(interrupted)}")
 # the progress line after the first finished job (a configuration or hydro, in milliseconds) takes the ETA
-# of the 4 dmc jobs still to run from the cost model (4 x 150 particles x 40 000 cycles at the model's
-# DMC rate on 1 worker), not from the milliseconds
-dmc_plan = 4 * 150 * 40000 / cost.THROUGHPUT["dmc"]
+# of the 4 dmc jobs still to run from the cost model (4 x 150 particles x 40 000 cycles at the rate of
+# anisodyn-dmc's own cost model, its --describe, on 1 worker), not from the milliseconds
+dmc_plan = 4 * 150 * 40000 / Tools(bin_dir).describe("dmc")["cost"]["rate"]
 first_done = re.search(r"done 1/11 .*ETA (\d+):(\d\d)\n", err)
 eta = int(first_done.group(1)) * 60 + int(first_done.group(2)) if first_done else None
 check(eta is not None and eta >= int(dmc_plan),

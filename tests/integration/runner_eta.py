@@ -10,15 +10,19 @@ plus a hydro job, 150 particles, 300 MC and 40 000 DMC cycles.
      of the same tool are scaled by how the finished jobs compared with their plan;
   4. running jobs count with what is left of them; the ETA is never below the longest job left;
   5. with nothing to go on (no plan, nothing finished) the ETA is unknown.
-argv: [1] build bin dir (unused), [2] scratch dir (unused), [3] source dir."""
+The plans come from the tools' own cost models (their --describe).
+argv: [1] build bin dir, [2] scratch dir (unused), [3] source dir."""
 import os
 import sys
 
-source = sys.argv[3]
+bin_dir, source = sys.argv[1], sys.argv[3]
 sys.path.insert(0, os.path.join(source, "workflows"))
 from anisodyn_run import cost, expand  # noqa: E402
+from anisodyn_run.describe import Tools  # noqa: E402
 from anisodyn_run.executor import Progress  # noqa: E402
 from anisodyn_run.manifest import validate  # noqa: E402
+
+tools = Tools(bin_dir)
 
 MANIFEST = {
     "study": "eta",
@@ -51,10 +55,10 @@ def close(a, b):
     return a is not None and abs(a - b) <= 1e-9 * max(1.0, abs(b))
 
 
-jobs, by_stage, _ = expand.expand(MANIFEST, validate(MANIFEST, lambda tool: True))
+jobs, by_stage, _ = expand.expand(MANIFEST, validate(MANIFEST, tools), tools)
 stage_jobs = {name: [jobs[j] for j in ids] for name, ids in by_stage.items()}
-MC_PLAN = 150 * 300 / cost.THROUGHPUT["mc"]       # particles x cycles / trial moves per second
-DMC_PLAN = 150 * 40000 / cost.THROUGHPUT["dmc"]
+MC_PLAN = 150 * 300 / tools.describe("mc")["cost"]["rate"]       # particles x cycles / trial moves per second
+DMC_PLAN = 150 * 40000 / tools.describe("dmc")["cost"]["rate"]
 WORKERS = 2
 planned = cost.planned_seconds(jobs, jobs)
 check(sorted(planned.values()) == sorted([MC_PLAN] * 2 + [DMC_PLAN] * 4) and
@@ -91,7 +95,7 @@ check(close(progress.eta(left, []), expect), f"after one dmc job took 3x its pla
 # 3b. a second stage of a measured tool is scaled by that tool's measured / planned ratio
 second = dict(MANIFEST, stages=MANIFEST["stages"][:3] + [{"name": "dmc_long", "tool": "dmc", "inputs": ["mc"],
                                                           "params": {"seed": 10, "cycles": 80000, "time_step": {"hs": 0.01}}}])
-jobs2, by_stage2, _ = expand.expand(second, validate(second, lambda tool: True))
+jobs2, by_stage2, _ = expand.expand(second, validate(second, tools), tools)
 progress2 = Progress("eta", len(jobs2), 1, True, cost.planned_seconds(jobs2, jobs2))
 for jid in by_stage2["dmc"]:
     progress2.record(jobs2[jid], 1.5 * DMC_PLAN)

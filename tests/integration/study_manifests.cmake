@@ -9,7 +9,8 @@
 #
 # COST: without timings from an earlier run (a fresh build directory), ctest starts the tests of
 # highest COST first. The manifests' COST is the runner's cost estimate of their engine jobs in
-# seconds (manifest_costs.py), so the longest manifests start first and the short tests fill in.
+# seconds, from the tools' own cost models (--describe), so it is computed once the tools are built
+# (manifest_costs/), and the longest manifests start first while the short tests fill in.
 #
 # Default suite budget: under 10 minutes on 2 cores. A smoke manifest that would break it gets the
 # label `slow` (scripts/test --all) by being named in _slow_smoke_manifests.
@@ -17,14 +18,6 @@ set(_slow_smoke_manifests)
 set(_workers 2)
 file(GLOB _smoke_manifests CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/manifests/*-smoke.json)
 set(_manifests ${CMAKE_SOURCE_DIR}/manifests/quickstart.json ${_smoke_manifests})
-execute_process(COMMAND ${ANISODYN_SYSTEM_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/../support/manifest_costs.py ${_manifests}
-                OUTPUT_VARIABLE _manifest_costs ERROR_QUIET)
-string(REPLACE "\n" ";" _manifest_costs "${_manifest_costs}")
-foreach(_line ${_manifest_costs})
-  if(_line MATCHES "^([^ ]+) ([0-9]+)$")
-    set(_cost_${CMAKE_MATCH_1} ${CMAKE_MATCH_2})
-  endif()
-endforeach()
 foreach(_manifest ${_manifests})
   get_filename_component(_study ${_manifest} NAME_WLE)
   set(_slow)
@@ -32,7 +25,5 @@ foreach(_manifest ${_manifests})
     set(_slow SLOW)
   endif()
   anisodyn_add_script_test(study_${_study} study_manifests.py ${_slow} ARGS ${_study} ${_workers})
-  if(DEFINED _cost_${_study})
-    set_tests_properties(integration_study_${_study} PROPERTIES COST ${_cost_${_study}})
-  endif()
 endforeach()
+add_subdirectory(manifest_costs)  # after the tests: ctest reads a subdirectory's files last

@@ -6,6 +6,7 @@ import sys
 import time
 
 from . import cost, executor, expand
+from .describe import DescriptionError, Tools
 from .jobdb import JobDb
 from .manifest import ManifestError, load, replicated, validate
 
@@ -41,11 +42,12 @@ def main(argv=None):
     root = repo_root()
     bin_dir = os.path.abspath(args.bin or os.path.join(root, "build", "bin"))
     results = os.path.abspath(args.results or os.path.join(root, "results"))
+    tools = Tools(bin_dir)  # what each tool is, from its --describe (asked once per tool)
     try:
         if args.jobs < 1:
             raise ManifestError("--jobs", "at least 1", args.jobs)
         m = load(args.manifest)
-        order = validate(m, lambda tool: os.access(os.path.join(bin_dir, f"anisodyn-{tool}"), os.X_OK))
+        order = validate(m, tools)
         stage_names = [st["name"] for st in m["stages"]]
         for opt, value in (("--only", args.only), ("--from", args.from_stage)):
             if value is not None and value not in stage_names + ["report"]:
@@ -56,10 +58,13 @@ def main(argv=None):
         where = args.manifest if not str(e).startswith("at --") else "command line"
         print(f"anisodyn-run: error: {where}: {e}", file=sys.stderr)
         return EXIT_BAD_INPUT
-    jobs, by_stage, deps = expand.expand(m, order)
+    except DescriptionError as e:  # the tools, not the manifest, are at fault
+        print(f"anisodyn-run: error: {e}", file=sys.stderr)
+        return EXIT_FAILED
+    jobs, by_stage, deps = expand.expand(m, order, tools)
     campaign = os.path.abspath(args.campaign) if args.campaign else os.path.join(results, m["study"])
     if args.dry_run:
-        return dry_run(m, jobs, by_stage, deps, campaign)
+        return dry_run(m, jobs, by_stage, deps, campaign, tools)
     if args.status:
         return status(m, jobs, by_stage, campaign)
     if args.emit:
@@ -127,17 +132,19 @@ def run(args, m, jobs, by_stage, campaign, bin_dir, root):
     return report.generate(m, jobs, by_stage, campaign, quiet=args.quiet)
 
 
-def dry_run(m, jobs, by_stage, deps, campaign):
+def dry_run(m, jobs, by_stage, deps, campaign, tools):
     points = len(expand.grid_points(m))
     print(f"study {m['study']}: {points} grid point{'s' if points != 1 else ''} x {m.get('replicas', 1)} replicas -> {len(jobs)} jobs")
     print(f"campaign directory: {campaign}")
     est = cost.estimate(jobs)
+    used = cost.models(m, tools)
+    unit = cost.work_unit(used)
     total_moves, total_seconds = 0, 0.0
-    print(f"{'stage':<16} {'tool':<14} {'jobs':>6}  {'per':<28} {'inputs':<20} {'trial moves':>12} {'CPU time':>9}")
+    print(f"{'stage':<16} {'tool':<14} {'jobs':>6}  {'per':<28} {'inputs':<20} {unit:>12} {'CPU time':>9}")
     for st in m["stages"]:
         name = st["name"]
         per = ", ".join(deps[name]) or "-"
-        if replicated(st):
+        if replicated(st, tools):
             per += " x replica"
         n, moves, seconds = est.get(name, (0, 0, 0.0))
         total_moves += moves
@@ -145,9 +152,12 @@ def dry_run(m, jobs, by_stage, deps, campaign):
         print(f"{name:<16} {st['tool']:<14} {len(by_stage.get(name, [])):>6}  {per:<28} {','.join(st.get('inputs', [])) or '-':<20} "
               f"{cost.human_count(moves) if moves else '-':>12} {cost.human_seconds(seconds) if moves else '-':>9}")
     present = sum(1 for j in jobs.values() if os.path.exists(os.path.join(campaign, j.output)))
-    print(f"total: {len(jobs)} jobs ({present} outputs already present); estimated {cost.human_count(total_moves)} trial moves, "
-          f"{cost.human_seconds(total_seconds)} of one core (single-core throughputs from docs/performance.md: "
-          + ", ".join(f"{k} {v:.3g}/s" for k, v in cost.THROUGHPUT.items()) + ")")
+    if used:
+        print(f"total: {len(jobs)} jobs ({present} outputs already present); estimated {cost.human_count(total_moves)} {unit}, "
+              f"{cost.human_seconds(total_seconds)} of one core (single-core throughputs from docs/performance.md: "
+              f"{cost.rates_text(used)})")
+    else:
+        print(f"total: {len(jobs)} jobs ({present} outputs already present); no engine stage, nothing to estimate")
     listed = list(jobs.values()) if len(jobs) <= DAG_LISTING_LIMIT else list(jobs.values())[:1]
     print("jobs (inputs first):" if len(listed) > 1 else f"{len(jobs)} jobs; the first (all are listed up to {DAG_LISTING_LIMIT}):")
     for job in listed:

@@ -1,22 +1,109 @@
-"""Cost estimate of a campaign in trial moves (N particles × cycles per engine job), converted to
-CPU time with the single-core throughputs measured by the engine benchmarks (docs/performance.md).
+"""Cost estimate of a campaign from the engines' own cost models: the "cost" of each tool's
+description (--describe, describe.py). The runner knows no tool and no throughput of its own.
+
+An engine states {"kind": "model", "work": UNIT, "amount": [FACTOR, ...], "rate": R,
+"rates_when": [{"present": "key.path", "rate": R2}, ...], "measured": WHERE AND WHEN, "note": ...}:
+a job's work is the product of the factors, its CPU time the work over the rate (that of the first
+rates_when entry whose key path is in the job's parameters, else R). A factor is
+  "particles"                      the particle count of the job's system: from the job upstream
+                                   whose tool's output declares "adds_particles" ({"sum_over": LIST,
+                                   "key": COUNT}: the sum of COUNT over the entries of LIST, plus
+                                   the particles of its own first input);
+  {"param": "key.path", "default": X}   a number from the job's parameters;
+  {"rule": NAME, ...}              a named count (RULES below) for run lengths no single key gives;
+  a number                         a constant.
+So a new engine whose run length is one key (steps of BD or DPD, lattice updates of LB from the
+lattice size and steps) states its model without a change here. Tools whose jobs need no estimate
+say {"kind": "negligible"} or {"kind": "not_estimated"}, with "why"; an engine must state a model.
+
 The estimate is a plan, not a promise: compression phases count their max_cycles (an upper bound),
 and the throughput depends on density and shape."""
 import math
 
-# Single-thread trial moves per second, bench/mc_throughput.cpp (2026-11-22) and
-# bench/dmc_throughput.cpp (2026-11-24, with skin lists; medians of three rounds, docs/performance.md).
-THROUGHPUT = {
-    "mc": 9.57e5,          # 2000 boards 12×3.46×1, η = 0.20
-    "dmc": 9.6e5,          # 2000 boards 12×1×1 + 200 spheres, η = 0.34 nematic (the slowest hard-core case)
-    "dmc_dipolar": 8.9e4,  # 1500 dipolar cubes with Ewald, field on
-}
+COST_KINDS = {"model", "negligible", "not_estimated"}
+
+
+def mc_phases(params, rule):
+    """Σ over the phases of their cycles; a compression counts its max_cycles (rule's
+    default_max_cycles when not given): an upper bound."""
+    total = 0
+    for ph in params.get("phases", []):
+        if isinstance(ph, dict):
+            total += ph.get("cycles", ph.get("max_cycles", rule["default_max_cycles"] if ph.get("type") == "compress" else 0))
+    return total
+
+
+def dmc_cycles(params, rule):
+    """Production cycles: `cycles`, or for a run given in Brownian time rule's cycles_per_time_step
+    × time / the largest time step (a cycle advances at most δt/3: a lower bound); at least the
+    schedule's segment cycles × repeat; plus the preliminary cycles of an equilibrium balance."""
+    total = params.get("cycles", 0)
+    if not total and "time" in params and params.get("time_step"):
+        steps = [v for v in params["time_step"].values() if isinstance(v, (int, float)) and v > 0]
+        total = int(rule["cycles_per_time_step"] * params["time"] / max(steps)) if steps else 0
+    schedule = params.get("schedule", {})
+    segments = schedule.get("segments", [])
+    per_repeat = sum(s.get("cycles", 0) for s in segments if isinstance(s, dict))
+    total = max(total, per_repeat * schedule.get("repeat", 1))
+    balance = params.get("balance")
+    if isinstance(balance, dict) and balance.get("mode", "equilibrium") == "equilibrium":
+        total += balance.get("preliminary_cycles", rule["default_preliminary_cycles"])
+    return total
+
+
+# name -> (function(params, rule), the keys the rule object must give)
+RULES = {"mc_phases": (mc_phases, ("default_max_cycles",)),
+         "dmc_cycles": (dmc_cycles, ("cycles_per_time_step", "default_preliminary_cycles"))}
+
+
+def _number(x):
+    return isinstance(x, (int, float)) and not isinstance(x, bool)
+
+
+def check_model(c, engine):
+    """ValueError unless `c` is a cost statement the estimate can use; an engine needs a model."""
+    if not isinstance(c, dict) or c.get("kind") not in COST_KINDS:
+        raise ValueError(f"'cost' must be an object with kind {' | '.join(sorted(COST_KINDS))}")
+    if c["kind"] != "model":
+        if engine:
+            raise ValueError(f"an engine must state a cost model (\"cost\": {{\"kind\": \"model\", \"work\", \"amount\", "
+                             f"\"rate\", ...}}, docs/manifests.md); its description says kind \"{c['kind']}\"")
+        return
+    if not isinstance(c.get("work"), str) or not c["work"]:
+        raise ValueError("a cost model names its unit of work ('work', e.g. \"trial moves\")")
+    if not isinstance(c.get("amount"), list) or not c["amount"]:
+        raise ValueError("a cost model's 'amount' is a non-empty list of factors")
+    for f in c["amount"]:
+        if f == "particles" or _number(f):
+            continue
+        if isinstance(f, dict) and isinstance(f.get("param"), str) and _number(f.get("default", 0)):
+            continue
+        if isinstance(f, dict) and f.get("rule") in RULES and all(_number(f.get(k)) for k in RULES[f["rule"]][1]):
+            continue
+        raise ValueError(f"unknown cost factor {f!r}: \"particles\", a number, {{\"param\": \"key.path\", \"default\": x}} "
+                         f"or {{\"rule\": one of {', '.join(sorted(RULES))}, with its keys}}")
+    if not _number(c.get("rate")) or c["rate"] <= 0:
+        raise ValueError("a cost model's 'rate' is a positive number of work units per second of one core")
+    for w in c.get("rates_when", []):
+        if not isinstance(w, dict) or not isinstance(w.get("present"), str) or not _number(w.get("rate")) or w["rate"] <= 0:
+            raise ValueError("'rates_when' entries are {\"present\": \"key.path\", \"rate\": positive number}")
+
+
+def _lookup(params, path):
+    """(present, value) of a dotted key path in the parameters."""
+    value = params
+    for key in path.split("."):
+        if not isinstance(value, dict) or key not in value:
+            return False, None
+        value = value[key]
+    return True, value
 
 
 def particles(job, jobs):
-    """Particle count of a job's system, from the config job(s) upstream (insertion adds)."""
-    if job.tool == "config":
-        n = sum(int(c.get("count", 0)) for c in job.params.get("composition", []) if isinstance(c, dict))
+    """Particle count of a job's system, from the builder job(s) upstream (insertion adds)."""
+    adds = job.info["output"].get("adds_particles")
+    if adds:
+        n = sum(int(c.get(adds["key"], 0)) for c in job.params.get(adds["sum_over"], []) if isinstance(c, dict))
         return n + sum(particles(jobs[i], jobs) for i in job.inputs[:1])
     for i in job.inputs:
         n = particles(jobs[i], jobs)
@@ -25,41 +112,43 @@ def particles(job, jobs):
     return 0
 
 
-def cycles(job):
-    p = job.params
-    if job.tool == "mc":
-        total = 0
-        for ph in p.get("phases", []):
-            if isinstance(ph, dict):
-                total += ph.get("cycles", ph.get("max_cycles", 10**6 if ph.get("type") == "compress" else 0))
-        return total
-    if job.tool == "dmc":
-        total = p.get("cycles", 0)
-        if not total and "time" in p and p.get("time_step"):
-            # a run given in Brownian time: t per cycle is A δt/3 (spec 70 §1.1); A = 1 is a lower bound
-            steps = [v for v in p["time_step"].values() if isinstance(v, (int, float)) and v > 0]
-            total = int(3 * p["time"] / max(steps)) if steps else 0
-        segments = p.get("schedule", {}).get("segments", [])
-        per_repeat = sum(s.get("cycles", 0) for s in segments if isinstance(s, dict))
-        total = max(total, per_repeat * p.get("schedule", {}).get("repeat", 1))
-        balance = p.get("balance")
-        if isinstance(balance, dict) and balance.get("mode", "equilibrium") == "equilibrium":
-            total += balance.get("preliminary_cycles", 10**4)
-        return total
-    return 0
+def factor(f, job, jobs):
+    if f == "particles":
+        return particles(job, jobs)
+    if _number(f):
+        return f
+    if "param" in f:
+        present, value = _lookup(job.params, f["param"])
+        return value if present and _number(value) else f.get("default", 0)
+    return RULES[f["rule"]][0](job.params, f)
+
+
+def model(job):
+    """The job's tool's cost model, or None for a tool whose jobs are not estimated."""
+    c = job.info["cost"]
+    return c if c["kind"] == "model" else None
+
+
+def rate(m, params):
+    for w in m.get("rates_when", []):
+        if _lookup(params, w["present"])[0]:
+            return w["rate"]
+    return m["rate"]
 
 
 def job_cost(job, jobs):
-    """(trial moves, seconds of one core) of an engine job; None for a tool the model does not cover."""
-    if job.tool not in ("mc", "dmc"):
+    """(work, seconds of one core) of a job, from its tool's model; None for a tool without one."""
+    m = model(job)
+    if m is None:
         return None
-    moves = particles(job, jobs) * cycles(job)
-    rate = THROUGHPUT["dmc_dipolar" if job.tool == "dmc" and "dipoles" in job.params.get("field", {}) else job.tool]
-    return moves, moves / rate
+    work = 1
+    for f in m["amount"]:
+        work *= factor(f, job, jobs)
+    return work, work / rate(m, job.params)
 
 
 def estimate(jobs):
-    """{stage: (jobs, trial moves, seconds)} for the engine stages."""
+    """{stage: (jobs, work, seconds)} for the stages of tools with a cost model."""
     out = {}
     for job in jobs.values():
         cost = job_cost(job, jobs)
@@ -72,13 +161,39 @@ def estimate(jobs):
 
 def planned_seconds(jobs, ids):
     """{job id: seconds of one core} from the model, for the given jobs it covers (a plan of zero
-    trial moves means the model could not size the job)."""
+    work means the model could not size the job)."""
     out = {}
     for jid in ids:
         cost = job_cost(jobs[jid], jobs)
         if cost is not None and cost[1] > 0:
             out[jid] = cost[1]
     return out
+
+
+def models(m, tools):
+    """[(tool, cost model)] of the manifest's tools that have one, in stage order."""
+    out, seen = [], set()
+    for st in m["stages"]:
+        c = tools.describe(st["tool"])["cost"]
+        if c["kind"] == "model" and st["tool"] not in seen:
+            seen.add(st["tool"])
+            out.append((st["tool"], c))
+    return out
+
+
+def work_unit(used):
+    """The unit of work of the models used ("trial moves"), or "work" for none or several."""
+    units = {c["work"] for _, c in used}
+    return units.pop() if len(units) == 1 else "work"
+
+
+def rates_text(used):
+    """"mc 9.57e+05/s, dmc 9.6e+05/s, dmc with field.dipoles 8.9e+04/s" for the models used."""
+    parts = []
+    for tool, c in used:
+        parts.append(f"{tool} {c['rate']:.3g}/s")
+        parts += [f"{tool} with {w['present']} {w['rate']:.3g}/s" for w in c.get("rates_when", [])]
+    return ", ".join(parts)
 
 
 def human_seconds(s):

@@ -3,7 +3,8 @@
 A job is ready when its inputs are finished. It is skipped ("up-to-date") when its output exists
 and the stamp beside it records the same job id and the same SHA-256 of every input file;
 otherwise it runs `anisodyn-<tool> --config <job>.json --output <job>.h5 --input ... [--replica K]`
-from the repository root. An engine job interrupted earlier resumes from its checkpoint because the
+from the repository root (--replica for a replicated job of a tool whose description says it takes
+one). An engine job interrupted earlier resumes from its checkpoint because the
 command is the same. A failed job is reported with its log path; jobs that need its output are
 blocked, the others go on.
 
@@ -20,7 +21,6 @@ import time
 
 from . import cost
 from .jobdb import atomic_write_text
-from .manifest import ENGINE_TOOLS
 
 PR_SET_PDEATHSIG = 1
 
@@ -41,7 +41,7 @@ def command(job, jobs, bin_dir, campaign):
            "--output", os.path.join(campaign, job.output)]
     for i in job.inputs:
         cmd += ["--input", os.path.join(campaign, jobs[i].output)]
-    if job.replica is not None and job.tool in ENGINE_TOOLS:
+    if job.replica is not None and job.info["replica"]:
         cmd += ["--replica", str(job.replica)]
     return cmd
 
@@ -75,8 +75,8 @@ class Progress:
 
     The ETA spreads the expected remaining seconds of every unfinished job over the workers (and is
     never less than the longest of them). A job is expected to take the mean duration of the
-    finished jobs of its stage. Before any job of its stage has finished, an engine job takes the
-    cost model's plan (cost.py), scaled by how long the finished jobs of the same tool took against
+    finished jobs of its stage. Before any job of its stage has finished, an engine job takes its
+    tool's cost model's plan (cost.py), scaled by how long the finished jobs of the same tool took against
     their plan; a job the model does not cover takes the mean of the finished uncovered jobs. The
     first jobs to finish are configurations (milliseconds): extrapolating from them alone made the
     ETA read 0:00 until the first engine job finished."""

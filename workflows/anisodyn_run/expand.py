@@ -33,6 +33,7 @@ class Job:
     stem: str                    # <stage>[-r<K>]: the configuration, logs and stamp are <stem>.json, ...
     filename: str                # the output: <stem>.h5, or the stage's "output" name (-r<K> before its first dot)
     downstream: list = field(default_factory=list)
+    info: dict = field(default_factory=dict, repr=False, compare=False)  # the tool's description (describe.py)
 
     @property
     def output(self):
@@ -109,9 +110,9 @@ def output_name(stage, replica):
     return stage["output"] if replica is None else f"{base}-r{replica}{dot}{ext}"
 
 
-def expand(m, order):
+def expand(m, order, tools):
     """All jobs, keyed by id, in an order where inputs come first; the job ids of each stage; and the
-    grid variables each stage depends on."""
+    grid variables each stage depends on. Each job carries its tool's description (`tools`)."""
     stages = m["stages"]
     stage_by_name = {st["name"]: st for st in stages}
     replicas = m.get("replicas", 1)
@@ -122,7 +123,7 @@ def expand(m, order):
         for i in order:
             st = stages[i]
             own = {v: point[v] for v in deps[st["name"]]}
-            reps = list(range(replicas)) if replicated(st) else [None]
+            reps = list(range(replicas)) if replicated(st, tools) else [None]
             for r in reps:
                 key = (st["name"], json.dumps(own, sort_keys=True), r)
                 if key in lookup:
@@ -131,7 +132,7 @@ def expand(m, order):
                 for inp in st.get("inputs", []):
                     inp_stage = stage_by_name[inp]
                     inp_point = json.dumps({v: point[v] for v in deps[inp]}, sort_keys=True)
-                    if replicated(inp_stage):
+                    if replicated(inp_stage, tools):
                         wanted = [r] if r is not None else list(range(replicas))
                         input_ids += [lookup[(inp, inp_point, k)] for k in wanted]
                     else:
@@ -145,7 +146,8 @@ def expand(m, order):
                 directory = os.path.join(st["name"], *[f"{v}={format_value(own[v])}" for v in own])
                 stem = st["name"] if r is None else f"{st['name']}-r{r}"
                 filename = output_name(st, r)
-                jobs[jid] = Job(jid, st["name"], st["tool"], params, own, r, input_ids, directory, stem, filename)
+                jobs[jid] = Job(jid, st["name"], st["tool"], params, own, r, input_ids, directory, stem, filename,
+                                info=tools.describe(st["tool"]))
                 by_stage.setdefault(st["name"], []).append(jid)
     for job in jobs.values():
         for inp in job.inputs:

@@ -12,12 +12,12 @@ Schema (docs/manifests.md):
 References in params: "${grid.x}" (a grid var), "${replica}" (the replica index, replicated stages
 only), "${study}". A string that is exactly one reference takes the value's type; an object key
 whose value is exactly a reference to a null grid value is left out.
+What a tool is (replicated by default or not) comes from its description (describe.py).
 """
 import json
 import re
 
 REFERENCE = re.compile(r"\$\{([^}]*)\}")
-ENGINE_TOOLS = {"config", "mc", "dmc", "bd", "dpd", "lb"}  # replicated by default; take --replica K
 TOP_KEYS = {"study", "description", "defaults", "grid", "zip", "replicas", "stages", "report"}
 STAGE_KEYS = {"name", "tool", "params", "inputs", "replicate", "description", "output"}
 NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]*$")
@@ -61,8 +61,9 @@ def format_value(v):
     return v if isinstance(v, str) else json.dumps(v)
 
 
-def validate(m, tool_exists):
-    """Checks the manifest against the schema; `tool_exists(tool)` says whether anisodyn-<tool> exists.
+def validate(m, tools):
+    """Checks the manifest against the schema; `tools` (describe.Tools) says whether anisodyn-<tool>
+    exists and describes it (a tool that does not describe itself properly: DescriptionError).
     Returns the stages in a topological order of their inputs."""
     if not isinstance(m, dict):
         raise ManifestError("(top level)", "a JSON object", m)
@@ -84,7 +85,7 @@ def validate(m, tool_exists):
     for tool, block in defaults.items():
         if not isinstance(block, dict):
             raise ManifestError(f"defaults.{tool}", "an object of parameters for that tool", block)
-    order = validate_stages(m, tool_exists)
+    order = validate_stages(m, tools)
     validate_report(m)
     validate_everything_acts(m)
     return order
@@ -129,7 +130,7 @@ def validate_grid(m):
             raise ManifestError(f"grid.{var}", "distinct values (or put it in a zip group)", values)
 
 
-def validate_stages(m, tool_exists):
+def validate_stages(m, tools):
     stages = m.get("stages")
     if not isinstance(stages, list) or not stages:
         raise ManifestError("stages", "a non-empty list of stages", stages)
@@ -148,8 +149,9 @@ def validate_stages(m, tool_exists):
             raise ManifestError(f"{p}.name", "a unique stage name", name)
         index[name] = i
         tool = st.get("tool")
-        if not isinstance(tool, str) or not NAME.match(tool) or not tool_exists(tool):
+        if not isinstance(tool, str) or not NAME.match(tool) or not tools.exists(tool):
             raise ManifestError(f"{p}.tool", "the name of an anisodyn tool (an executable anisodyn-<tool>)", tool)
+        tools.describe(tool)
         if not isinstance(st.get("params", {}), dict):
             raise ManifestError(f"{p}.params", "an object", st.get("params"))
         if not isinstance(st.get("replicate", True), bool):
@@ -170,7 +172,7 @@ def validate_stages(m, tool_exists):
     grid = m.get("grid", {})
     for i, st in enumerate(stages):
         params = merge(m.get("defaults", {}).get(st["tool"], {}), st.get("params", {}))
-        check_references(params, f"stages[{i}].params", grid, replicated(st))
+        check_references(params, f"stages[{i}].params", grid, replicated(st, tools))
     return order
 
 
@@ -195,9 +197,12 @@ def topological_order(stages, index):
     return order
 
 
-def replicated(stage):
-    """Whether the stage runs once per replica: engines by default, analysis stages aggregate."""
-    return stage.get("replicate", stage["tool"] in ENGINE_TOOLS)
+def replicated(stage, tools):
+    """Whether the stage runs once per replica: by default when its tool takes --replica (builders
+    and engines, their descriptions say), while analysis stages aggregate the replicas."""
+    if "replicate" in stage:
+        return stage["replicate"]
+    return tools.describe(stage["tool"])["replica"]
 
 
 def check_references(value, path, grid, is_replicated):

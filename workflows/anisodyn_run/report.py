@@ -13,9 +13,10 @@ import sys
 import time
 
 from .expand import grid_points
-from .manifest import ENGINE_TOOLS, format_value
+from .manifest import format_value
 
 EXIT_FAILED = 3
+H5MD_OUTPUTS = {"state", "trajectory"}  # output kinds (tool descriptions) that are H5MD files with a species table
 
 
 def _imports():
@@ -148,9 +149,9 @@ class Report:
         import json
         rows = {}
         for st in self.m["stages"]:
-            if st["tool"] not in ENGINE_TOOLS:
-                continue
             for job in self.stage_jobs(st["name"]):
+                if job.info["output"]["kind"] not in H5MD_OUTPUTS:
+                    continue
                 try:
                     with h5py.File(self.path(job), "r") as f:
                         text = f["parameters/provenance"][()] if "parameters/provenance" in f else b"{}"
@@ -210,9 +211,9 @@ class Report:
     def all_scalars(self):
         lines = ["## Every scalar measured", ""]
         for st in self.m["stages"]:
-            if st["tool"] in ("config", "mc", "dmc", "hydro", "bd", "dpd", "lb"):
-                continue
             for job in self.stage_jobs(st["name"]):
+                if job.info["output"]["kind"] != "analysis":
+                    continue
                 try:
                     scalars = read_scalars(self.path(job))
                 except OSError:
@@ -386,6 +387,6 @@ class Report:
                 continue
             seen.add(jid)
             up = self.jobs[jid]
-            if up.tool in ("dmc", "mc", "bd", "dpd", "lb", "config"):
+            if up.info["output"]["kind"] in H5MD_OUTPUTS:
                 yield self.path(up)
             frontier += up.inputs

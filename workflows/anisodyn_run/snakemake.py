@@ -72,7 +72,7 @@ def emit(m, jobs, by_stage, deps, bin_dir, repo_root, out_dir, manifest_path):
                   f"    input: lambda wc: job('{output}')(wc)['inputs']",
                   f"    log: out='{stem}.log', err='{stem}.err'",
                   f"    params: cmd=lambda wc: job('{output}')(wc)['cmd']",
-                  "    resources: runtime=1440" if st["tool"] in ("mc", "dmc", "bd", "dpd", "lb") else "    resources: runtime=60",
+                  "    resources: runtime=1440" if example.info["role"] == "engine" else "    resources: runtime=60",
                   "    shell: '{params.cmd} > {log.out} 2> {log.err}'", ""]
     if m.get("report"):
         runner = os.path.join(repo_root, "workflows", "anisodyn-run")

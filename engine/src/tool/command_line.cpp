@@ -15,6 +15,43 @@ namespace anisodyn::tool {
 
 namespace po = boost::program_options;
 
+nlohmann::ordered_json describe(const ToolInfo& info) {
+  using nlohmann::ordered_json;
+  const Description& d = info.description;
+  ordered_json parameters = ordered_json::array();
+  for (const auto& p : d.parameters) {
+    ordered_json j{{"name", p.name}, {"type", p.type}, {"required", p.required}};
+    if (!p.required) j["default"] = ordered_json::parse(p.default_value.dump());
+    j["meaning"] = p.meaning;
+    parameters.push_back(j);
+  }
+  ordered_json output{{"kind", d.output.kind}, {"format", d.output.format}, {"meaning", d.output.meaning}};
+  if (!d.output.adds_particles.is_null()) output["adds_particles"] = ordered_json::parse(d.output.adds_particles.dump());
+  return {{"name", info.name},
+          {"summary", info.summary},
+          {"version", kVersion},
+          {"role", role_name(d.role)},
+          {"replica", d.replica},
+          {"inputs", {{"kind", d.inputs.kind}, {"min", d.inputs.min}, {"max", d.inputs.max < 0 ? ordered_json(nullptr) : ordered_json(d.inputs.max)},
+                      {"meaning", d.inputs.meaning}}},
+          {"output", output},
+          {"parameters", parameters},
+          {"cost", ordered_json::parse(d.cost.dump())}};
+}
+
+std::string parameters_help(const ToolInfo& info) {
+  if (info.description.parameters.empty()) return "";
+  std::string out = "Configuration keys (--config FILE.json; --describe gives them as JSON):\n";
+  for (const auto& p : info.description.parameters) {
+    out += "  " + p.name + " (" + p.type + ", ";
+    if (p.required) out += "required";
+    else if (p.default_value.is_null()) out += "optional";
+    else out += "default " + p.default_value.dump();
+    out += "): " + p.meaning + "\n";
+  }
+  return out;
+}
+
 std::optional<CommonOptions> parse_command_line(int argc, char** argv, const ToolInfo& info) {
   CommonOptions opt;
   opt.tool = info.name;
@@ -26,6 +63,7 @@ std::optional<CommonOptions> parse_command_line(int argc, char** argv, const Too
   desc.add_options()
       ("help,h", "show this help and exit")
       ("version", "show the version and exit")
+      ("describe", "print what this tool is, reads, writes and takes (JSON) and exit")
       ("config,c", po::value<std::string>(&opt.config_path), "JSON configuration file")
       ("set", po::value<std::vector<std::string>>(&opt.overrides)->composing(), "override a configuration value: key.path=value (repeatable)")
       ("input,i", po::value<std::vector<std::string>>(&opt.inputs)->composing(), "input file (repeatable)")
@@ -44,7 +82,13 @@ std::optional<CommonOptions> parse_command_line(int argc, char** argv, const Too
   }
   if (vm.count("help")) {
     std::cout << info.name << " — " << info.summary << "\n\nUsage: " << info.name << " [options]\n\n" << desc;
+    const std::string keys = parameters_help(info);
+    if (!keys.empty()) std::cout << "\n" << keys;
     if (!info.usage_notes.empty()) std::cout << "\n" << info.usage_notes << "\n";
+    return std::nullopt;
+  }
+  if (vm.count("describe")) {
+    std::cout << describe(info).dump(2) << std::endl;
     return std::nullopt;
   }
   if (vm.count("version")) {

@@ -60,4 +60,14 @@ std::vector<std::pair<SelectedSpecies, Analysis>> analyse_each_species(const Sta
 
 int run_analysis_stage(int argc, char** argv, const tool::ToolInfo& info, const std::function<void(StageRun&)>& body);
 
+/// The description (--describe) of an analysis stage: its own parameters, then `more` (e.g.
+/// lag_grid_parameters()), then the keys the driver reads for every stage (inputs, csv, window);
+/// trajectories in (any number), tables and scalars out, no cost estimate.
+tool::Description analysis_description(std::vector<tool::Parameter> parameters, const std::string& output_meaning,
+                                       const std::vector<tool::Parameter>& more = {});
+
+/// lags_per_decade and max_origins, the lag-grid keys of the stages that correlate frames (`mode`:
+/// the mode that reads them, e.g. "passive"; empty: every mode).
+std::vector<tool::Parameter> lag_grid_parameters(const std::string& mode = "");
+
 }  // namespace anisodyn::analysis

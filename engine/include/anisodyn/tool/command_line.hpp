@@ -9,13 +9,23 @@
 
 #include <nlohmann/json.hpp>
 
+#include "anisodyn/tool/description.hpp"
+
 namespace anisodyn::tool {
 
 struct ToolInfo {
   std::string name;         // e.g. "anisodyn-mc"
   std::string summary;      // one line
-  std::string usage_notes;  // printed after the option list in --help
+  std::string usage_notes;  // printed in --help after the option list and the configuration keys
+  Description description;  // --describe (description.hpp); --help lists its parameters
 };
+
+/// The JSON that --describe prints: name, summary, version, role, replica, inputs, output,
+/// parameters and cost (docs/manifests.md, "Tool descriptions").
+nlohmann::ordered_json describe(const ToolInfo& info);
+
+/// The "Configuration keys" section of --help, one line per parameter of the description.
+std::string parameters_help(const ToolInfo& info);
 
 struct CommonOptions {
   std::string tool;
@@ -35,8 +45,8 @@ struct CommonOptions {
   std::string config_name() const { return config_path.empty() ? "(command line)" : config_path; }
 };
 
-/// Parses the command line, loads --config and applies --set. Returns nullopt after --help or
-/// --version (already printed). Throws InputError on bad options.
+/// Parses the command line, loads --config and applies --set. Returns nullopt after --help,
+/// --version or --describe (already printed; they need no other option). Throws InputError on bad options.
 std::optional<CommonOptions> parse_command_line(int argc, char** argv, const ToolInfo& info);
 
 /// For tools that turn one input state into one output file: checks that there is exactly one

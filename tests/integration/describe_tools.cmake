@@ -1,0 +1,1 @@
+anisodyn_add_script_test(describe_tools describe_tools.py)
