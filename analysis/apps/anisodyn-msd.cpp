@@ -40,7 +40,7 @@ std::optional<double> free_diffusion(const std::string& component, const Species
 void write_free_diffusion(StageRun& run, const SelectedSpecies& sp, const MsdComponent& c) {
   const auto d0 = free_diffusion(c.name, sp.properties);
   if (!d0) return;
-  const nlohmann::json details = {{"source", "D_trans of species " + sp.name + " in the species table of " + run.inputs.front()},
+  const nlohmann::json details = {{"source", "D_trans of species " + sp.name + " in the species table of the first input trajectory"},
                                   {"D_trans", {sp.properties.D_trans.x(), sp.properties.D_trans.y(), sp.properties.D_trans.z()}}};
   run.out.scalar({"D0_" + c.name + "_" + sp.name, *d0, 0.0, "length^2/tau",
                   c.name.rfind("body_", 0) == 0 ? "free-particle D along the body axis (infinite dilution)"

@@ -358,35 +358,19 @@ class Report:
             raise ReportError(f"{where}.theory: unknown kind '{kind}' (constant, power, exponential, free_diffusion, wertheim)")
 
     def free_diffusivity(self, job, t, where):
-        """D of the free-particle line from the species table of an engine trajectory upstream."""
-        import h5py
+        """D of the free-particle line (MSD = 2 D t), from the D0 scalars the msd stage wrote from its
+        trajectory's species table: for the total MSD the sum over axes, 3 D0_tot."""
         species, component = t.get("species"), t.get("component", "tot")
-        for path in self.upstream_trajectories(job):
-            with h5py.File(path, "r") as f:
-                if "parameters/species" not in f:
-                    continue
-                g = f["parameters/species"]
-                names = [n.decode() if isinstance(n, bytes) else str(n) for n in g["name"][...]]
-                if species not in names:
-                    raise ReportError(f"{where}.theory.species: '{species}' is not a species of {path} ({', '.join(names)})")
-                d = g["D_trans"][names.index(species)]
-                if component == "tot":
-                    return float(sum(d))
-                if component in ("x", "y", "z"):
-                    return float(sum(d) / 3.0)
-                if component in ("T", "W", "L"):
-                    return float(d["TWL".index(component)])
-                raise ReportError(f"{where}.theory.component: expected tot, x, y, z, T, W or L")
-        raise ReportError(f"{where}.theory: no engine trajectory upstream of stage '{job.stage}' has a species table")
+        column = {"tot": "tot", "x": "x", "y": "y", "z": "z", "T": "body_x", "W": "body_y", "L": "body_z"}.get(component)
+        if column is None:
+            raise ReportError(f"{where}.theory.component: expected tot, x, y, z, T, W or L")
+        scalars = read_scalars(self.path(job))
+        name = f"D0_{column}_{species}"
+        if name not in scalars:
+            known = sorted(n[len("D0_"):] for n in scalars if n.startswith("D0_"))
+            raise ReportError(f"{where}.theory: stage '{job.stage}' wrote no {name} (an anisodyn-msd output whose trajectory "
+                              f"has D_trans for '{species}'; T, W, L need body_frame: true); it has D0 for: "
+                              f"{', '.join(known) or 'none'}")
+        d0 = scalars[name][0]
+        return 3.0 * d0 if component == "tot" else d0
 
-    def upstream_trajectories(self, job):
-        frontier, seen = list(job.inputs), set()
-        while frontier:
-            jid = frontier.pop(0)
-            if jid in seen:
-                continue
-            seen.add(jid)
-            up = self.jobs[jid]
-            if up.info["output"]["kind"] in H5MD_OUTPUTS:
-                yield self.path(up)
-            frontier += up.inputs
