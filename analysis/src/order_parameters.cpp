@@ -9,7 +9,6 @@
 #include "anisodyn/core/box.hpp"
 #include "anisodyn/core/error.hpp"
 #include "anisodyn/core/statistics.hpp"
-#include "anisodyn/io/h5md.hpp"
 #include "anisodyn/system/order.hpp"
 
 namespace anisodyn::analysis {
@@ -180,23 +179,6 @@ std::vector<double> interpolate_onto(const std::vector<double>& time, const std:
     const double w = (x - time[j - 1]) / (time[j] - time[j - 1]);
     out[g] = (1 - w) * value[j - 1] + w * value[j];
   }
-  return out;
-}
-
-std::vector<SelectedSpecies> select_oriented_species(const std::string& first_input, const std::string& requested,
-                                                     const std::string& config_file, const std::string& key) {
-  const SpeciesTable table = io::H5mdReader(first_input).species();
-  if (!requested.empty()) {
-    auto out = select_species(first_input, requested, config_file, key);
-    if (!table[static_cast<std::size_t>(out.front().index)].shape.is_anisotropic())
-      throw InputError(config_file, key, "species '" + requested + "' is a sphere: it carries no orientational order");
-    return out;
-  }
-  std::vector<SelectedSpecies> out;
-  for (std::size_t s = 0; s < table.size(); ++s)
-    if (table[s].shape.is_anisotropic()) out.push_back({table[s].name, static_cast<int>(s)});
-  if (out.empty())
-    throw InputError(config_file, key, first_input + " has no anisotropic species (spheres carry no orientational order); name one with \"" + key + "\"");
   return out;
 }
 

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "anisodyn/analysis/order_parameters.hpp"
+#include "anisodyn/analysis/species_selection.hpp"
 #include "anisodyn/core/error.hpp"
 #include "anisodyn/system/order.hpp"
 #include "input_error.hpp"
@@ -353,6 +354,14 @@ TEST_F(OrderFileTest, SpheresAreNotOrientedSpecies) {
   EXPECT_EQ(sel[0].index, 1);
   const InputError e = input_error([&] { select_oriented_species(path, "S", "cfg.json", "species"); });
   EXPECT_EQ(e.json_path(), "species");
+  // the scopes of the per-species stages: every species, the anisotropic ones, exactly one
+  EXPECT_EQ(select_species(path, SpeciesRequest{"", SpeciesScope::Every}, "cfg.json", "species").size(), 2u);
+  EXPECT_EQ(select_species(path, SpeciesRequest{"", SpeciesScope::Oriented}, "cfg.json", "species").size(), 1u);
+  const auto one = select_species(path, SpeciesRequest{"S", SpeciesScope::Single}, "cfg.json", "species");
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_EQ(one[0].index, 0);
+  const InputError several = input_error([&] { select_species(path, SpeciesRequest{"", SpeciesScope::Single}, "cfg.json", "species"); });
+  EXPECT_EQ(several.json_path(), "species");
 }
 
 TEST_F(OrderFileTest, AWindowKeepsTrajectoryTimeOnTheCommonGrid) {

@@ -20,7 +20,6 @@
 
 #include "anisodyn/analysis/dipolar_bonds.hpp"
 #include "anisodyn/analysis/replica_statistics.hpp"
-#include "anisodyn/analysis/species_selection.hpp"
 #include "anisodyn/analysis/trajectory.hpp"
 #include "anisodyn/core/types.hpp"
 #include "anisodyn/tool/json_config.hpp"
@@ -110,11 +109,6 @@ int run_averaged_main_axis(const Trajectory& t, const std::vector<std::size_t>& 
 /// the common time grid of the non-equilibrium convention (spec 50 §0).
 std::vector<double> interpolate_onto(const std::vector<double>& time, const std::vector<double>& value,
                                      const std::vector<double>& grid);
-
-/// Species of the orientational stages: the named one, or every anisotropic species of the first
-/// input. Spheres carry no orientation: naming one, or having none other → InputError (config_file, key).
-std::vector<SelectedSpecies> select_oriented_species(const std::string& first_input, const std::string& requested,
-                                                     const std::string& config_file, const std::string& key);
 
 // ---- anisodyn-order: time series of the order parameters over replicas ----------------------------
 
