@@ -11,26 +11,12 @@
 #include "anisodyn/geometry/body_axes.hpp"
 #include "anisodyn/analysis/dipolar_clusters.hpp"
 #include "anisodyn/analysis/nematic_clusters.hpp"
-#include "anisodyn/analysis/species_selection.hpp"
-#include "anisodyn/analysis/stage.hpp"
-#include "anisodyn/core/error.hpp"
+#include "anisodyn/analysis/per_species_stage.hpp"
 
 using namespace anisodyn;
 using namespace anisodyn::analysis;
 
 namespace {
-
-/// The species named by `species`, or the only one in the file (several and none named → error).
-SelectedSpecies one_species(StageRun& run, const std::string& requested) {
-  const auto all = select_species(run.inputs.front(), requested, run.opt.config_name(), "species");
-  if (all.size() > 1) {
-    std::string names;
-    for (const auto& s : all) names += (names.empty() ? "" : ", ") + s.name;
-    throw InputError(run.opt.config_name(), "species", run.inputs.front() + " has several species (" + names +
-                                                           "): name the one to cluster with \"species\"");
-  }
-  return all.front();
-}
 
 std::string factor_name(double f) {
   std::ostringstream o;
@@ -43,16 +29,7 @@ std::string factor_name(double f) {
 
 // ---- nematic --------------------------------------------------------------------------------------
 
-void run_nematic(StageRun& run) {
-  const NematicClusterSettings s = parse_nematic_cluster_settings(run.cfg);
-  run.cfg.finish();
-  const SelectedSpecies sp = one_species(run, s.species);
-  NematicClusterAnalysis a(s, run.inputs.size(), run.opt.config_name());
-  TrajectoryNeeds needs;
-  needs.positions = true;
-  needs.orientations = true;
-  run.each_replica(needs, [&](const Trajectory& t, std::size_t) { a.accumulate(t, sp.index); });
-  const NematicClusterResult r = a.compute();
+void write_nematic(StageRun& run, const NematicClusterSettings& s, const SelectedSpecies& sp, const NematicClusterResult& r) {
   const std::string rule = kNematicClusterRule;
   const nlohmann::json details = {{"rule_version", rule}, {"species", sp.name}, {"axis", body_axis_name(s.axis)},
                                   {"K1", s.k1}, {"K2", s.k2}, {"K_par", s.k_par}, {"K_perp", s.k_perp},
@@ -124,6 +101,17 @@ void run_nematic(StageRun& run) {
   if (!run.opt.quiet)
     std::fprintf(stderr, "anisodyn-clusters: nematic %s: <N_tot> = %.5g ± %.2g, largest fraction %.4f over %zu configurations (%zu unconverged)\n",
                  sp.name.c_str(), r.total.value, r.total.error, r.largest_fraction.value, r.configurations, r.unconverged);
+}
+
+void run_nematic(StageRun& run) {
+  const NematicClusterSettings s = parse_nematic_cluster_settings(run.cfg);
+  run.cfg.finish();
+  TrajectoryNeeds needs;
+  needs.positions = true;
+  needs.orientations = true;
+  run_per_species(
+      run, {s.species, SpeciesScope::Single}, needs, [&] { return NematicClusterAnalysis(s, run.inputs.size(), run.opt.config_name()); },
+      [&](const SelectedSpecies& sp, NematicClusterAnalysis& a, const std::vector<double>&) { write_nematic(run, s, sp, a.compute()); });
 }
 
 // ---- dipolar --------------------------------------------------------------------------------------
@@ -215,30 +203,23 @@ void write_dipolar(StageRun& run, const DipolarClusterSettings& s, const Selecte
 void run_dipolar(StageRun& run) {
   const DipolarClusterSettings s = parse_dipolar_cluster_settings(run.cfg);
   run.cfg.finish();
-  const SelectedSpecies sp = one_species(run, s.species);
-  DipolarChainAnalysis a(s, run.opt.config_name());
   TrajectoryNeeds needs;
   needs.positions = true;
   needs.min_frames = 2;  // a time series
-  run.each_replica(needs, [&](const Trajectory& t, std::size_t) { a.accumulate(t, sp.index); });
-  if (s.transition_at_x2_maximum) {
-    const double t1 = a.time_of_x2_maximum();
-    run.each_replica(needs, [&](const Trajectory& t, std::size_t) { a.accumulate_transitions(t, sp.index, t1, "maximum of X(2,t)"); });
-  }
-  write_dipolar(run, s, sp, a.compute());
+  run_per_species(
+      run, {s.species, SpeciesScope::Single}, needs, [&] { return DipolarChainAnalysis(s, run.opt.config_name()); },
+      [&](const SelectedSpecies& sp, DipolarChainAnalysis& a, const std::vector<double>&) {
+        if (s.transition_at_x2_maximum) {  // a second pass: t_1 is known only once every replica is in
+          const double t1 = a.time_of_x2_maximum();
+          run.each_replica(needs, [&](const Trajectory& t, std::size_t) { a.accumulate_transitions(t, sp.index, t1, "maximum of X(2,t)"); });
+        }
+        write_dipolar(run, s, sp, a.compute());
+      });
 }
 
 // ---- dbscan ---------------------------------------------------------------------------------------
 
-void run_dbscan(StageRun& run) {
-  const DbscanCalibrationSettings s = parse_dbscan_settings(run.cfg);
-  run.cfg.finish();
-  const SelectedSpecies sp = one_species(run, s.species);
-  DbscanCalibration a(s, run.opt.config_name());
-  TrajectoryNeeds needs;
-  needs.positions = true;
-  run.each_replica(needs, [&](const Trajectory& t, std::size_t) { a.accumulate(t, sp.index); });
-  const DbscanCalibrationResult r = a.compute();
+void write_dbscan(StageRun& run, const DbscanCalibrationSettings& s, const SelectedSpecies& sp, const DbscanCalibrationResult& r) {
   const std::string knee = s.eps ? "given" : "knee of the sorted k-NN distance curve (k = MinPts, self excluded): the point farthest below the chord between its ends, both axes scaled to [0, 1]";
   const nlohmann::json details = {{"species", sp.name}, {"gamma", s.rule.gamma}, {"sigma", s.rule.sigma},
                                   {"field_direction", {s.rule.field.x(), s.rule.field.y(), s.rule.field.z()}},
@@ -283,6 +264,16 @@ void run_dbscan(StageRun& run) {
     for (std::size_t k = 0; k < r.eps_factors.size(); ++k)
       std::fprintf(stderr, "anisodyn-clusters: dbscan %s: Eps x %g: beta u_max = %.4g ± %.2g (%zu configurations)\n", sp.name.c_str(),
                    r.eps_factors[k], r.bu_max[k].value, r.bu_max[k].error, r.used[k]);
+}
+
+void run_dbscan(StageRun& run) {
+  const DbscanCalibrationSettings s = parse_dbscan_settings(run.cfg);
+  run.cfg.finish();
+  TrajectoryNeeds needs;
+  needs.positions = true;
+  run_per_species(
+      run, {s.species, SpeciesScope::Single}, needs, [&] { return DbscanCalibration(s, run.opt.config_name()); },
+      [&](const SelectedSpecies& sp, DbscanCalibration& a, const std::vector<double>&) { write_dbscan(run, s, sp, a.compute()); });
 }
 
 tool::Description description() {

@@ -5,8 +5,7 @@
 #include <optional>
 
 #include "anisodyn/analysis/msd.hpp"
-#include "anisodyn/analysis/species_selection.hpp"
-#include "anisodyn/analysis/stage.hpp"
+#include "anisodyn/analysis/per_species_stage.hpp"
 
 using namespace anisodyn;
 using namespace anisodyn::analysis;
@@ -111,7 +110,8 @@ int main(int argc, char** argv) {
     needs.min_frames = 2;  // one lag
     needs.orientations = settings.reference == MsdReference::Director || settings.reference == MsdReference::ParticleAxis || settings.body_frame;
     if (settings.body_frame) needs.optional_elements = {"body_displacement"};
-    auto analyses = analyse_each_species<MsdAnalysis>(run, settings, settings.species, needs);
-    for (auto& [sp, a] : analyses) write_results(run, sp, a.compute());
+    run_per_species(
+        run, {settings.species}, needs, [&] { return MsdAnalysis(settings, run.inputs.size(), run.opt.config_name()); },
+        [&](const SelectedSpecies& sp, MsdAnalysis& a, const std::vector<double>&) { write_results(run, sp, a.compute()); });
   });
 }

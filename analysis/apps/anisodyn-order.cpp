@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "anisodyn/analysis/order_parameters.hpp"
-#include "anisodyn/analysis/stage.hpp"
+#include "anisodyn/analysis/per_species_stage.hpp"
 #include "anisodyn/system/order.hpp"
 
 using namespace anisodyn;
@@ -83,15 +83,11 @@ int main(int argc, char** argv) {
   return run_analysis_stage(argc, argv, info, [](StageRun& run) {
     const OrderStageSettings settings = parse_order_settings(run.cfg);
     run.cfg.finish();
-    const auto species = select_oriented_species(run.inputs.front(), settings.species, run.opt.config_name(), "species");
-    std::vector<OrderAnalysis> analyses;
-    for (std::size_t k = 0; k < species.size(); ++k) analyses.emplace_back(settings, run.opt.config_name());
     TrajectoryNeeds needs;
     needs.orientations = true;
     needs.positions = settings.order.chains.has_value();
-    const auto grid = run.each_replica(needs, [&](const Trajectory& t, std::size_t) {
-      for (std::size_t k = 0; k < species.size(); ++k) analyses[k].accumulate(t, species[k].index);
-    });
-    for (std::size_t k = 0; k < species.size(); ++k) write_results(run, settings, species[k], analyses[k].compute(grid));
+    run_per_species(
+        run, {settings.species, SpeciesScope::Oriented}, needs, [&] { return OrderAnalysis(settings, run.opt.config_name()); },
+        [&](const SelectedSpecies& sp, OrderAnalysis& a, const std::vector<double>& grid) { write_results(run, settings, sp, a.compute(grid)); });
   });
 }

@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <type_traits>
 
+#include "anisodyn/analysis/per_species_stage.hpp"
 #include "anisodyn/analysis/response_times.hpp"
-#include "anisodyn/analysis/stage.hpp"
 
 using namespace anisodyn;
 using namespace anisodyn::analysis;
@@ -96,16 +96,12 @@ int main(int argc, char** argv) {
   return run_analysis_stage(argc, argv, info, [](StageRun& run) {
     const ResponseSettings settings = parse_response_settings(run.cfg);
     run.cfg.finish();
-    const auto species = select_oriented_species(run.inputs.front(), settings.species, run.opt.config_name(), "species");
-    std::vector<ResponseAnalysis> analyses;
-    for (std::size_t k = 0; k < species.size(); ++k) analyses.emplace_back(settings, run.opt.config_name());
     TrajectoryNeeds needs;
     needs.orientations = true;
     needs.event_observables = {"field_switches"};  // windowed: the switches inside the window
     needs.min_frames = 2;
-    run.each_replica(needs, [&](const Trajectory& t, std::size_t) {
-      for (std::size_t k = 0; k < species.size(); ++k) analyses[k].accumulate(t, species[k].index);
-    });
-    for (std::size_t k = 0; k < species.size(); ++k) write_results(run, settings, species[k], analyses[k].compute());
+    run_per_species(
+        run, {settings.species, SpeciesScope::Oriented}, needs, [&] { return ResponseAnalysis(settings, run.opt.config_name()); },
+        [&](const SelectedSpecies& sp, ResponseAnalysis& a, const std::vector<double>&) { write_results(run, settings, sp, a.compute()); });
   });
 }

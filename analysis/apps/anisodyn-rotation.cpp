@@ -4,8 +4,7 @@
 
 #include "anisodyn/analysis/rotation.hpp"
 #include "anisodyn/geometry/body_axes.hpp"
-#include "anisodyn/analysis/species_selection.hpp"
-#include "anisodyn/analysis/stage.hpp"
+#include "anisodyn/analysis/per_species_stage.hpp"
 
 using namespace anisodyn;
 using namespace anisodyn::analysis;
@@ -68,7 +67,8 @@ int main(int argc, char** argv) {
     needs.orientations = true;
     needs.optional_elements = {"rotation_vector"};
     needs.min_frames = 2;  // one lag
-    auto analyses = analyse_each_species<RotationAnalysis>(run, settings, settings.species, needs);
-    for (auto& [sp, a] : analyses) write_results(run, sp, a.compute());
+    run_per_species(
+        run, {settings.species}, needs, [&] { return RotationAnalysis(settings, run.inputs.size()); },
+        [&](const SelectedSpecies& sp, RotationAnalysis& a, const std::vector<double>&) { write_results(run, sp, a.compute()); });
   });
 }

@@ -9,6 +9,7 @@
 #include "anisodyn/analysis/frame_window.hpp"
 #include "anisodyn/analysis/pair_search.hpp"
 #include "anisodyn/core/error.hpp"
+#include "anisodyn/interactions/dipolar_pair.hpp"
 
 namespace anisodyn::analysis {
 
@@ -24,27 +25,15 @@ struct Neighbourhoods {
   auto end(std::size_t i) const { return list.begin() + static_cast<std::ptrdiff_t>(first[i + 1]); }
 };
 
-/// Pairs |p − q| ≤ eps through the shared pair search (pair_search.hpp). The points lie in the
-/// z = 0 plane of a periodic box more than twice their spread plus Eps on each axis, so no periodic
-/// image comes within reach and the candidates are the open-boundary ones; the search reaches a
-/// little beyond Eps and the test itself is made on the given coordinates, as the definition reads.
+/// Pairs |p − q| ≤ eps, the test made on the given coordinates as the definition reads, among the
+/// candidates of the shared pair search (pair_search.hpp), which reaches a little beyond Eps.
 Neighbourhoods eps_neighbourhoods(const std::vector<Point2>& p, double eps) {
-  double x0 = p.front().x, x1 = x0, y0 = p.front().y, y1 = y0;
-  for (const auto& q : p) {
-    x0 = std::min(x0, q.x); x1 = std::max(x1, q.x);
-    y0 = std::min(y0, q.y); y1 = std::max(y1, q.y);
-  }
-  const double reach = eps * (1 + 1e-6), eps2 = eps * eps;
-  // a thin third axis keeps one layer of cells
-  const Vec3 box(2 * (x1 - x0 + reach), 2 * (y1 - y0 + reach), reach / 4);
-  std::vector<Vec3> r(p.size());
-  for (std::size_t i = 0; i < p.size(); ++i) r[i] = Vec3(p[i].x - x0, p[i].y - y0, 0.0);
-  const PairGrid grid(box, reach, p.size());
+  const double eps2 = eps * eps;
   std::vector<std::pair<std::size_t, std::size_t>> pairs;
-  grid.for_each_pair(grid.sort(r), [&](std::size_t i, std::size_t j, const Vec3&, double) {
+  for (const auto& [i, j] : planar_candidate_pairs(p, eps * (1 + 1e-6))) {
     const double dx = p[j].x - p[i].x, dy = p[j].y - p[i].y;
     if (dx * dx + dy * dy <= eps2) pairs.emplace_back(i, j);
-  });
+  }
   Neighbourhoods n;
   n.first.assign(p.size() + 1, 0);
   for (const auto& [i, j] : pairs) { ++n.first[i + 1]; ++n.first[j + 1]; }
@@ -53,6 +42,12 @@ Neighbourhoods eps_neighbourhoods(const std::vector<Point2>& p, double eps) {
   std::vector<std::size_t> next(n.first.begin(), n.first.end() - 1);
   for (const auto& [i, j] : pairs) { n.list[next[i]++] = j; n.list[next[j]++] = i; }
   return n;
+}
+
+/// βu of a (r_∥, r_⊥) point: r² = r_∥² + r_⊥² and Ê·r = r_∥ in the one pair energy of engine and
+/// analyses (interactions/dipolar_pair.hpp).
+double point_energy(const Point2& p, const DipolarBondRule& rule) {
+  return dipolar_pair_energy(p.x * p.x + p.y * p.y, p.x, rule.gamma, rule.sigma);
 }
 
 }  // namespace
@@ -200,7 +195,7 @@ BondCalibration calibrate_bond_threshold(const std::vector<Point2>& points, doub
   b.bu_max = -std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < points.size(); ++k)
     if (labels.label[k] == b.cluster) {
-      b.bu_max = std::max(b.bu_max, dipolar_pair_energy(points[k].x, points[k].y, s.rule.gamma, s.rule.sigma));
+      b.bu_max = std::max(b.bu_max, point_energy(points[k], s.rule));
       ++b.cluster_points;
     }
   return b;

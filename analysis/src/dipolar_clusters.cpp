@@ -5,7 +5,6 @@
 #include <limits>
 #include <sstream>
 
-#include "anisodyn/analysis/pair_search.hpp"
 #include "anisodyn/core/error.hpp"
 
 namespace anisodyn::analysis {
@@ -22,39 +21,6 @@ std::string number_text(double v) {
 }
 
 }  // namespace
-
-// ---- E2 -----------------------------------------------------------------------------------------
-
-double dipolar_pair_energy(double r_par, double r_perp, double gamma, double sigma) {
-  const double r2 = r_par * r_par + r_perp * r_perp;
-  const double s3 = std::pow(sigma * sigma / r2, 1.5);
-  return 0.5 * gamma * s3 * (1.0 - 3.0 * r_par * r_par / r2);
-}
-
-double dipolar_pair_energy(const Vec3& r, const DipolarBondRule& rule) {
-  const double par = r.dot(rule.field);
-  const double perp = std::sqrt(std::max(0.0, r.squaredNorm() - par * par));
-  return dipolar_pair_energy(par, perp, rule.gamma, rule.sigma);
-}
-
-double dipolar_bond_cutoff(const DipolarBondRule& rule) {
-  // βu ≥ −γ(σ/r)³ (θ = 0), so βu < βu_max < 0 needs r < σ (γ/|βu_max|)^{1/3}.
-  return rule.sigma * std::cbrt(rule.gamma / std::abs(rule.bu_max));
-}
-
-std::vector<Bond> dipolar_bonds(const std::vector<Vec3>& positions, const Box& box, const DipolarBondRule& rule) {
-  if (!(rule.bu_max < 0)) throw InputError("", "bu_max", "the bond threshold must be negative, got " + number_text(rule.bu_max));
-  if (!(rule.gamma > 0)) throw InputError("", "gamma", "the dipolar coupling must be positive, got " + number_text(rule.gamma));
-  std::vector<Bond> bonds;
-  // a small margin: the strict test βu < βu_max decides, the cut-off only prunes
-  for (const ClosePair& p : close_pairs(positions, box, dipolar_bond_cutoff(rule) * (1 + 1e-9)))
-    if (dipolar_pair_energy(p.d, rule) < rule.bu_max) bonds.emplace_back(p.i, p.j);
-  return bonds;
-}
-
-Components dipolar_clusters(const std::vector<Vec3>& positions, const Box& box, const DipolarBondRule& rule) {
-  return connected_components(positions.size(), dipolar_bonds(positions, box, rule));
-}
 
 // ---- E4 -----------------------------------------------------------------------------------------
 

@@ -3,38 +3,18 @@
 
 #include <algorithm>
 #include <limits>
-#include <numeric>
 
 #include <Eigen/Eigenvalues>
 
 #include "anisodyn/core/box.hpp"
 #include "anisodyn/core/error.hpp"
 #include "anisodyn/core/statistics.hpp"
-#include "anisodyn/io/h5md.hpp"
 #include "anisodyn/system/order.hpp"
 
 namespace anisodyn::analysis {
 
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-/// Union-find with path halving: clusters are the connected components of the bond graph.
-class DisjointSets {
- public:
-  explicit DisjointSets(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  std::size_t find(std::size_t i) {
-    while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
-    return i;
-  }
-  void unite(std::size_t a, std::size_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<std::size_t> parent_;
-};
 
 /// A unit vector perpendicular to n (for a degenerate biaxial frame).
 Vec3 any_perpendicular(const Vec3& n) {
@@ -134,45 +114,6 @@ CubeOrder cube_order_average(const std::vector<Mat3>& rotations, const Vec3& fie
   return out;
 }
 
-std::vector<std::size_t> dipolar_clusters(const std::vector<Vec3>& positions, const Vec3& box, const Vec3& field,
-                                          const DipolarChainRule& rule) {
-  const std::size_t n = positions.size();
-  DisjointSets sets(n);
-  const Box b(box);
-  const Vec3 e = field.normalized();
-  // βu ≥ −γ (σ/r)³, so no bond is possible beyond r_c = σ (γ / |βu_max|)^{1/3}.
-  const double rc = rule.sigma * std::cbrt(rule.gamma / std::abs(rule.bu_max));
-  const double rc2 = rc * rc;
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = i + 1; j < n; ++j) {
-      const Vec3 d = b.min_image(positions[j] - positions[i]);
-      const double r2 = d.squaredNorm();
-      if (r2 > rc2 || r2 <= 0.0) continue;
-      const double r = std::sqrt(r2);
-      const double c = d.dot(e) / r;
-      const double bu = 0.5 * rule.gamma * std::pow(rule.sigma / r, 3) * (1.0 - 3.0 * c * c);
-      if (bu < rule.bu_max) sets.unite(i, j);
-    }
-  std::vector<std::size_t> label(n), root_label(n, n);
-  std::size_t next = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t r = sets.find(i);
-    if (root_label[r] == n) root_label[r] = next++;
-    label[i] = root_label[r];
-  }
-  return label;
-}
-
-std::vector<char> dipolar_chain_mask(const std::vector<Vec3>& positions, const Vec3& box, const Vec3& field,
-                                     const DipolarChainRule& rule) {
-  const auto label = dipolar_clusters(positions, box, field, rule);
-  std::vector<std::size_t> size(positions.size(), 0);
-  for (std::size_t l : label) ++size[l];
-  std::vector<char> mask(positions.size());
-  for (std::size_t i = 0; i < positions.size(); ++i) mask[i] = size[label[i]] >= 2;
-  return mask;
-}
-
 FrameOrder frame_order(const std::vector<Mat3>& rotations, const OrderSettings& s, int main_axis, const std::vector<char>& in_chain) {
   FrameOrder out;
   const auto q = axis_q_tensors(rotations);
@@ -207,7 +148,7 @@ std::vector<Vec3> frame_positions(const Trajectory& t, std::size_t f, const std:
 FrameOrder trajectory_frame_order(const Trajectory& t, std::size_t f, const std::vector<std::size_t>& members,
                                   const OrderSettings& s, int main_axis) {
   std::vector<char> mask;
-  if (s.chains) mask = dipolar_chain_mask(frame_positions(t, f, members), t.box_edges(f), s.field_direction, *s.chains);
+  if (s.chains) mask = dipolar_chain_mask(frame_positions(t, f, members), Box(t.box_edges(f)), *s.chains);
   return frame_order(frame_rotations(t, f, members), s, main_axis, mask);
 }
 
@@ -241,23 +182,6 @@ std::vector<double> interpolate_onto(const std::vector<double>& time, const std:
   return out;
 }
 
-std::vector<SelectedSpecies> select_oriented_species(const std::string& first_input, const std::string& requested,
-                                                     const std::string& config_file, const std::string& key) {
-  const SpeciesTable table = io::H5mdReader(first_input).species();
-  if (!requested.empty()) {
-    auto out = select_species(first_input, requested, config_file, key);
-    if (!table[static_cast<std::size_t>(out.front().index)].shape.is_anisotropic())
-      throw InputError(config_file, key, "species '" + requested + "' is a sphere: it carries no orientational order");
-    return out;
-  }
-  std::vector<SelectedSpecies> out;
-  for (std::size_t s = 0; s < table.size(); ++s)
-    if (table[s].shape.is_anisotropic()) out.push_back({table[s].name, static_cast<int>(s)});
-  if (out.empty())
-    throw InputError(config_file, key, first_input + " has no anisotropic species (spheres carry no orientational order); name one with \"" + key + "\"");
-  return out;
-}
-
 // ---- the order stage -------------------------------------------------------------------------------
 
 OrderStageSettings parse_order_settings(tool::ConfigNode& cfg) {
@@ -279,7 +203,8 @@ OrderStageSettings parse_order_settings(tool::ConfigNode& cfg) {
   if (!(e.norm() > 0)) cfg.fail("field_direction", "expected a non-zero direction vector");
   s.order.field_direction = e.normalized();
   if (auto c = cfg.optional_object("chain_threshold")) {
-    DipolarChainRule rule;
+    DipolarBondRule rule;
+    rule.field = s.order.field_direction;
     rule.gamma = c->positive("gamma");
     rule.sigma = c->positive("sigma", 1.0);
     rule.bu_max = c->number("bu_max", -3.20);

@@ -151,6 +151,24 @@ CellSortedPoints PairGrid::sort(const std::vector<Vec3>& positions) const {
   return p;
 }
 
+std::vector<std::pair<std::size_t, std::size_t>> planar_candidate_pairs(const std::vector<Point2>& p, double reach) {
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  if (p.size() < 2 || !(reach > 0)) return pairs;
+  double x0 = p.front().x, x1 = x0, y0 = p.front().y, y1 = y0;
+  for (const auto& q : p) {
+    x0 = std::min(x0, q.x); x1 = std::max(x1, q.x);
+    y0 = std::min(y0, q.y); y1 = std::max(y1, q.y);
+  }
+  // The points lie in the z = 0 plane of a periodic box more than twice their spread plus the reach
+  // on each axis, so no periodic image comes within reach; a thin third axis keeps one layer of cells.
+  const Vec3 box(2 * (x1 - x0 + reach), 2 * (y1 - y0 + reach), reach / 4);
+  std::vector<Vec3> r(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) r[i] = Vec3(p[i].x - x0, p[i].y - y0, 0.0);
+  const PairGrid grid(box, reach, p.size());
+  grid.for_each_pair(grid.sort(r), [&](std::size_t i, std::size_t j, const Vec3&, double) { pairs.emplace_back(i, j); });
+  return pairs;
+}
+
 std::vector<ClosePair> close_pairs(const std::vector<Vec3>& positions, const Box& box, double cutoff) {
   std::vector<ClosePair> pairs;
   if (positions.size() < 2 || !(cutoff > 0)) return pairs;

@@ -12,6 +12,7 @@
 #include "anisodyn/analysis/dipolar_clusters.hpp"
 #include "anisodyn/analysis/nematic_clusters.hpp"
 #include "anisodyn/analysis/union_find.hpp"
+#include "anisodyn/interactions/dipolar_pair.hpp"
 #include "input_error.hpp"
 #include "scratch_dir.hpp"
 #include "synthetic_trajectory.hpp"
@@ -125,8 +126,8 @@ TEST(DipolarClusters, ChainAcrossThePeriodicBoundaryIsOneCluster) {
 TEST(DipolarClusters, SideBySideCubesAreNotBonded) {
   const DipolarBondRule rule = cube_rule();
   // θ = 90°: βu = +γ/(2 r³) > 0
-  EXPECT_DOUBLE_EQ(dipolar_pair_energy(Vec3(kSpacing, 0, 0), rule), 0.5 * kGamma / std::pow(kSpacing, 3));
-  EXPECT_DOUBLE_EQ(dipolar_pair_energy(Vec3(0, 0, kSpacing), rule), -kGamma / std::pow(kSpacing, 3));
+  EXPECT_DOUBLE_EQ(dipolar_pair_energy(Vec3(kSpacing, 0, 0), rule.field, rule.gamma), 0.5 * kGamma / std::pow(kSpacing, 3));
+  EXPECT_DOUBLE_EQ(dipolar_pair_energy(Vec3(0, 0, kSpacing), rule.field, rule.gamma), -kGamma / std::pow(kSpacing, 3));
   const std::vector<Vec3> r{{5, 5, 5}, {5 + kSpacing, 5, 5}, {5, 5 + 1.0, 5}};
   EXPECT_TRUE(dipolar_bonds(r, Box(Vec3(20, 20, 20)), rule).empty());
   // the same cubes stacked along the field are bonded

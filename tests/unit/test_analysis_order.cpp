@@ -9,6 +9,7 @@
 #include <random>
 
 #include "anisodyn/analysis/order_parameters.hpp"
+#include "anisodyn/analysis/species_selection.hpp"
 #include "anisodyn/core/error.hpp"
 #include "anisodyn/system/order.hpp"
 #include "input_error.hpp"
@@ -199,18 +200,18 @@ TEST(OrderParameters, BiaxialOrderOfExactMixturesIsTwoPMinusOne) {
 }
 
 TEST(OrderParameters, DipolarChainRuleBondsHeadToTailPairsAcrossTheBoundary) {
-  const Vec3 box(10, 10, 10), field = Vec3::UnitZ();
-  DipolarChainRule rule{13.0, 1.0, -3.20};  // bonds along the field up to r = (13/3.2)^{1/3} = 1.5956
+  const Box box(Vec3(10, 10, 10));
+  const DipolarBondRule rule{13.0, 1.0, -3.20, Vec3::UnitZ()};  // bonds along the field up to r = (13/3.2)^{1/3} = 1.5956
   const std::vector<Vec3> pos{
       {1, 1, 1},   {1, 1, 2.5},      // along the field, r = 1.5: βu = −13/1.5³ = −3.85 → bond
       {5, 5, 5},   {6, 5, 5},        // side by side, βu = +6.5 → no bond
       {3, 7, 9.8}, {3, 7, 0.4},      // along the field across the boundary, r = 0.6 → bond
       {8, 2, 3},   {8, 2, 4.7},      // along the field, r = 1.7: βu = −2.65 → no bond
       {3, 7, 1.5}};                  // continues the boundary chain, r = 1.1 from (3,7,0.4)
-  const auto mask = dipolar_chain_mask(pos, box, field, rule);
+  const auto mask = dipolar_chain_mask(pos, box, rule);
   const std::vector<char> expected{1, 1, 0, 0, 1, 1, 0, 0, 1};
   EXPECT_EQ(mask, expected);
-  const auto label = dipolar_clusters(pos, box, field, rule);
+  const auto label = dipolar_clusters(pos, box, rule).label;
   EXPECT_EQ(label[4], label[8]);
   EXPECT_NE(label[0], label[4]);
   // S^(c) over the chain members (aligned, S = 1) and S^(free) over the rest (45° about x)
@@ -218,7 +219,7 @@ TEST(OrderParameters, DipolarChainRuleBondsHeadToTailPairsAcrossTheBoundary) {
   const Mat3 tilted = Eigen::AngleAxisd(M_PI / 4, Vec3::UnitX()).toRotationMatrix();
   for (std::size_t i = 0; i < pos.size(); ++i)
     if (!mask[i]) rot[i] = tilted;
-  const CubeOrder c = cube_order_average(rot, field, mask);
+  const CubeOrder c = cube_order_average(rot, rule.field, mask);
   const double s_tilted = (M_PI * (3 * 0.5 - 1) - 2 * std::sqrt(3.0)) / (2 * M_PI - 2 * std::sqrt(3.0));
   EXPECT_NEAR(c.chain, 1.0, 1e-12);
   EXPECT_NEAR(c.free, s_tilted, 1e-12);
@@ -280,7 +281,7 @@ TEST(OrderStage, ChainSplitFromPositions) {
   std::vector<std::vector<Quat>> q(3, {Quat::Identity(), Quat::Identity(), tilt, tilt});
   std::vector<std::vector<Vec3>> pos(3, p);
   OrderStageSettings s;
-  s.order.chains = DipolarChainRule{13.0, 1.0, -3.2};
+  s.order.chains = DipolarBondRule{13.0, 1.0, -3.2, Vec3::UnitZ()};
   OrderAnalysis a(s);
   a.accumulate(make_trajectory(q, {0, 1, 2}, pos), -1);
   const OrderResult r = a.compute({0, 1, 2});
@@ -353,6 +354,14 @@ TEST_F(OrderFileTest, SpheresAreNotOrientedSpecies) {
   EXPECT_EQ(sel[0].index, 1);
   const InputError e = input_error([&] { select_oriented_species(path, "S", "cfg.json", "species"); });
   EXPECT_EQ(e.json_path(), "species");
+  // the scopes of the per-species stages: every species, the anisotropic ones, exactly one
+  EXPECT_EQ(select_species(path, SpeciesRequest{"", SpeciesScope::Every}, "cfg.json", "species").size(), 2u);
+  EXPECT_EQ(select_species(path, SpeciesRequest{"", SpeciesScope::Oriented}, "cfg.json", "species").size(), 1u);
+  const auto one = select_species(path, SpeciesRequest{"S", SpeciesScope::Single}, "cfg.json", "species");
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_EQ(one[0].index, 0);
+  const InputError several = input_error([&] { select_species(path, SpeciesRequest{"", SpeciesScope::Single}, "cfg.json", "species"); });
+  EXPECT_EQ(several.json_path(), "species");
 }
 
 TEST_F(OrderFileTest, AWindowKeepsTrajectoryTimeOnTheCommonGrid) {

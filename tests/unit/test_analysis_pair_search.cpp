@@ -179,6 +179,29 @@ TEST(PairSearch, ClosePairsAreOrderedAndEmptyInputsGiveNoPairs) {
   EXPECT_TRUE(close_pairs(r, Box(L), 0.0).empty());
 }
 
+TEST(PairSearch, PlanarCandidatePairsAreThePairsWithinReach) {
+  // open boundaries: points spread over negative and positive coordinates, a reach far below and
+  // one beyond the spread; the distances may round differently from the caller's in the last bit
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> u(-2, 3);
+  std::vector<Point2> p(300);
+  for (auto& q : p) q = {u(rng), 0.5 * u(rng)};
+  for (double reach : {0.07, 0.4, 9.0}) {
+    const auto pairs = planar_candidate_pairs(p, reach);
+    EXPECT_EQ(planar_candidate_pairs(p, reach), pairs);  // the same order every time
+    auto sorted = pairs;
+    std::sort(sorted.begin(), sorted.end());
+    EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end()) << "each pair once";
+    std::vector<std::pair<std::size_t, std::size_t>> ref;
+    for (std::size_t i = 0; i < p.size(); ++i)
+      for (std::size_t j = i + 1; j < p.size(); ++j)
+        if (std::hypot(p[j].x - p[i].x, p[j].y - p[i].y) < reach) ref.emplace_back(i, j);
+    EXPECT_EQ(sorted, ref) << "reach " << reach;
+  }
+  EXPECT_TRUE(planar_candidate_pairs({}, 1.0).empty());
+  EXPECT_TRUE(planar_candidate_pairs({{0, 0}}, 1.0).empty());
+}
+
 namespace {
 
 /// DBSCAN written out with O(N²) region queries (Ester et al. 1996, the library's documented rule).

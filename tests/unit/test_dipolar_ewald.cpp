@@ -26,6 +26,7 @@
 #include "anisodyn/core/error.hpp"
 #include "anisodyn/core/rng.hpp"
 #include "anisodyn/interactions/dipolar_ewald.hpp"
+#include "anisodyn/interactions/dipolar_pair.hpp"
 #include "input_error.hpp"
 
 using namespace anisodyn;
@@ -517,7 +518,7 @@ TEST(DipolarEwald, WaveVectorCountAndRealSpaceFunction) {
 // ---- 5. Bare pair energy (spec §6.1 worked values) ----------------------------------------------
 
 TEST(DipolarEwald, PairEnergyWorkedValues) {
-  const Vec3 E(0, 0, 2);  // need not be normalised
+  const Vec3 E(0, 0, 1);
   EXPECT_NEAR(dipolar_pair_energy(Vec3(0, 0, 1), E, 13.0), -13.0, 1e-12);
   EXPECT_NEAR(dipolar_pair_energy(Vec3(0, 0, -1), E, 13.0), -13.0, 1e-12);
   EXPECT_NEAR(dipolar_pair_energy(Vec3(1, 0, 0), E, 13.0), 6.5, 1e-12);
@@ -531,6 +532,8 @@ TEST(DipolarEwald, PairEnergyWorkedValues) {
   const double th = std::acos(1 / std::sqrt(3.0));
   EXPECT_NEAR(dipolar_pair_energy(Vec3(std::sin(th), 0, std::cos(th)) * 1.3, E, 13.0), 0.0, 1e-12);
   EXPECT_EQ(dipolar_pair_energy(Vec3(0, 0, 1), E, 0.0), 0.0);
+  // σ scales lengths: βu(σ r; σ) = βu(r; 1)
+  EXPECT_NEAR(dipolar_pair_energy(Vec3(0, 0, 2.5), E, 13.0, 2.5), -13.0, 1e-12);
 }
 
 // ---- 6. Minimum-image smoke-test mode -------------------------------------------------------------
@@ -554,7 +557,7 @@ TEST(DipolarEwald, MinimumImageOnlyIsTheBarePairSum) {
         if (!mask[i] || !mask[j]) continue;
         Vec3 d = q.position(j) - q.position(i);
         for (int a = 0; a < 3; ++a) d[a] -= L[a] * std::round(d[a] / L[a]);
-        if (d.norm() < 4.5) u += dipolar_pair_energy(d, E, kGamma);
+        if (d.norm() < 4.5) u += dipolar_pair_energy(d, E.normalized(), kGamma);
       }
     return u;
   };

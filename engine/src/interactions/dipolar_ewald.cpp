@@ -10,6 +10,7 @@
 #include <type_traits>
 
 #include "anisodyn/core/error.hpp"
+#include "anisodyn/interactions/dipolar_pair.hpp"
 
 namespace anisodyn {
 namespace {
@@ -104,10 +105,7 @@ inline double psi(const RealSpaceKernel& k, double dx, double dy, double dz) {
   const double s = dx * dx + dy * dy + dz * dz;
   const double ed = k.ex * dx + k.ey * dy + k.ez * dz;
   const double ed2 = ed * ed;
-  const double rinv = 1.0 / std::sqrt(s);
-  const double r3 = rinv * rinv * rinv;
-  const double r5 = r3 * rinv * rinv;
-  double v = r3 - 3.0 * ed2 * r5;
+  double v = bare_dipolar_psi(s, ed2);  // the one point-dipole pair function (dipolar_pair.hpp)
   if constexpr (kD > 0) {
     const double x = s * k.alpha - 1.0;
     double b = k.cb[kD], c = k.cc[kD];
@@ -682,13 +680,6 @@ void DipolarEwald::set_structure_factor(const std::vector<double>& s) {
     sim_[q] = s[2 * q + 1];
   }
   pending_ = static_cast<std::size_t>(-1);
-}
-
-double dipolar_pair_energy(const Vec3& r, const Vec3& direction, double gamma) {
-  const double r2 = r.squaredNorm();
-  const double c = direction.dot(r);
-  const double c2 = c * c / (direction.squaredNorm() * r2);
-  return 0.5 * gamma * (1.0 - 3.0 * c2) / (r2 * std::sqrt(r2));
 }
 
 }  // namespace anisodyn

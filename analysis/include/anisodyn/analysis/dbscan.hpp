@@ -16,16 +16,13 @@
 #include <string>
 #include <vector>
 
-#include "anisodyn/analysis/dipolar_clusters.hpp"
+#include "anisodyn/analysis/dipolar_bonds.hpp"
+#include "anisodyn/analysis/pair_search.hpp"
 #include "anisodyn/analysis/replica_statistics.hpp"
 #include "anisodyn/analysis/trajectory.hpp"
 #include "anisodyn/tool/json_config.hpp"
 
 namespace anisodyn::analysis {
-
-struct Point2 {
-  double x = 0.0, y = 0.0;
-};
 
 inline constexpr int kDbscanNoise = -1;
 

@@ -1,8 +1,6 @@
 #pragma once
 // Dipolar-energy clusters (chains) of cubes and their statistics (spec 50 §5.2, 5.4–5.6):
-//   - bond i–j if βu_ij < βu_max, βu_ij = (γ/2)(σ/r_ij)³(1 − 3cos²θ_ij), θ_ij the angle between the
-//     minimum-image r_ij and the field Ê (bare pair energy, no Ewald); clusters = connected
-//     components, free cubes have size l = 1 (E2);
+//   - clusters of the bond rule βu_ij < βu_max of dipolar_bonds.hpp (E2), free cubes of size l = 1;
 //   - chain statistics X(l,t) = N(l,t)/N_cube, X_c = Σ_{l≥2} l X(l), ⟨l⟩_n, ⟨l⟩_w as time series on
 //     the common time grid (mean time stamp of each frame over replicas, each replica linearly
 //     interpolated onto it; spec 50 §0), and the response time t_r (E4);
@@ -19,33 +17,12 @@
 #include <string>
 #include <vector>
 
+#include "anisodyn/analysis/dipolar_bonds.hpp"
 #include "anisodyn/analysis/replica_statistics.hpp"
 #include "anisodyn/analysis/trajectory.hpp"
-#include "anisodyn/analysis/union_find.hpp"
-#include "anisodyn/core/box.hpp"
 #include "anisodyn/tool/json_config.hpp"
 
 namespace anisodyn::analysis {
-
-// ---- E2: bonds and clusters ---------------------------------------------------------------------
-
-struct DipolarBondRule {
-  double gamma = 0.0;          // dipolar coupling γ (kT)
-  double sigma = 1.0;          // cube edge σ
-  double bu_max = -3.20;       // bond threshold (kT), must be negative (spec 50 §5.2)
-  Vec3 field = Vec3::UnitZ();  // unit field direction Ê
-};
-
-/// βu = (γ/2)(σ/r)³(1 − 3cos²θ), θ between r and Ê (spec 50 E2).
-double dipolar_pair_energy(const Vec3& r, const DipolarBondRule& rule);
-/// The same from the components (r_∥, r_⊥) of r along and across Ê.
-double dipolar_pair_energy(double r_par, double r_perp, double gamma, double sigma);
-/// Largest separation at which βu < βu_max is possible: σ (γ/|βu_max|)^{1/3} (θ = 0).
-double dipolar_bond_cutoff(const DipolarBondRule& rule);
-/// Bonds βu_ij < βu_max among `positions` (indices into it).
-std::vector<Bond> dipolar_bonds(const std::vector<Vec3>& positions, const Box& box, const DipolarBondRule& rule);
-/// The clusters of one configuration.
-Components dipolar_clusters(const std::vector<Vec3>& positions, const Box& box, const DipolarBondRule& rule);
 
 // ---- E4: chain statistics of one configuration ------------------------------------------------
 

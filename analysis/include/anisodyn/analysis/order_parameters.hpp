@@ -5,7 +5,8 @@
 //   - the biaxial order B_2,K about a main axis K (§3.2);
 //   - the rod order tensor S = (1/N) Σ û û (trace 1, §3.3) of one body axis;
 //   - the cube order parameter S_i (§3.4) averaged over all cubes, and over cubes in dipolar chains
-//     and free cubes when a chain mask is given (dipolar_chain_mask implements the bond rule of §5.2).
+//     and free cubes when a chain mask is given (dipolar_chain_mask of dipolar_bonds.hpp, the bond
+//     rule of §5.2).
 //
 // The kernels take the particles' rotation matrices (columns = body axes T, W, L in the lab), so
 // they can be tested without files; frame_rotations() extracts them from a Trajectory.
@@ -17,8 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "anisodyn/analysis/dipolar_bonds.hpp"
 #include "anisodyn/analysis/replica_statistics.hpp"
-#include "anisodyn/analysis/species_selection.hpp"
 #include "anisodyn/analysis/trajectory.hpp"
 #include "anisodyn/core/types.hpp"
 #include "anisodyn/tool/json_config.hpp"
@@ -32,14 +33,6 @@ inline const double kCubeIsotropicP2 = std::sqrt(3.0) / M_PI;
 /// Biaxiality thresholds of spec 50 §3.2.
 inline constexpr double kBiaxialThreshold = 0.35;
 inline constexpr double kWeaklyBiaxialThreshold = 0.20;
-
-/// Dipolar-energy bond rule of spec 50 §5.2: i–j bonded if βu_ij < bu_max with
-/// βu_ij = (γ/2)(σ/r_ij)³(1 − 3 cos²θ_ij), θ_ij between r_ij (minimum image) and the field Ê.
-struct DipolarChainRule {
-  double gamma = 0.0;
-  double sigma = 1.0;
-  double bu_max = -3.20;
-};
 
 struct AxisOrder {
   Mat3 q = Mat3::Zero();
@@ -72,7 +65,7 @@ struct OrderSettings {
   int main_axis = -1;             // K of B_2,K: 0 T, 1 W, 2 L; −1 = the axis of largest U (resolved by the caller)
   int rod_axis = 2;               // body axis of the rod order tensor
   Vec3 field_direction = Vec3::UnitZ();  // Ê for S_i and the chain rule
-  std::optional<DipolarChainRule> chains;
+  std::optional<DipolarBondRule> chains;  // its field is field_direction
 };
 
 /// Body axis from a config value: "T"/"x" → 0, "W"/"y" → 1, "L"/"z" → 2, "auto" → −1 (if allowed).
@@ -97,14 +90,6 @@ double max_squared_projection(const Mat3& rotation, const Vec3& field);
 double cube_order(const Mat3& rotation, const Vec3& field);
 /// Cube order averages; in_chain (one flag per particle, may be empty) splits S^(c) and S^(free).
 CubeOrder cube_order_average(const std::vector<Mat3>& rotations, const Vec3& field, const std::vector<char>& in_chain);
-/// Flags the particles that belong to a cluster of size ≥ 2 under the bond rule of spec 50 §5.2
-/// (union-find over bonded pairs, minimum image in an orthorhombic box).
-std::vector<char> dipolar_chain_mask(const std::vector<Vec3>& positions, const Vec3& box, const Vec3& field,
-                                     const DipolarChainRule& rule);
-/// Cluster label of each particle under the same rule (labels 0 … clusters − 1).
-std::vector<std::size_t> dipolar_clusters(const std::vector<Vec3>& positions, const Vec3& box, const Vec3& field,
-                                          const DipolarChainRule& rule);
-
 /// Every order parameter of one frame; main_axis K of B_2 (0–2, or −1 for this frame's nematic axis); in_chain as above.
 FrameOrder frame_order(const std::vector<Mat3>& rotations, const OrderSettings& s, int main_axis,
                        const std::vector<char>& in_chain = {});
@@ -124,11 +109,6 @@ int run_averaged_main_axis(const Trajectory& t, const std::vector<std::size_t>& 
 /// the common time grid of the non-equilibrium convention (spec 50 §0).
 std::vector<double> interpolate_onto(const std::vector<double>& time, const std::vector<double>& value,
                                      const std::vector<double>& grid);
-
-/// Species of the orientational stages: the named one, or every anisotropic species of the first
-/// input. Spheres carry no orientation: naming one, or having none other → InputError (config_file, key).
-std::vector<SelectedSpecies> select_oriented_species(const std::string& first_input, const std::string& requested,
-                                                     const std::string& config_file, const std::string& key);
 
 // ---- anisodyn-order: time series of the order parameters over replicas ----------------------------
 

@@ -1,7 +1,9 @@
 #pragma once
 // Neighbour pairs within a cut-off in a periodic orthorhombic box, at the minimum image (spec 50
 // §0), through cell lists: the one pair search of the analysis stages (g(r) and its directional
-// forms, the dipolar and nematic clusters, the DBSCAN calibration).
+// forms, the dipolar bonds and chains, the chain mask of the cube order, the nematic clusters, the
+// nearest neighbours and the Eps-neighbourhoods of the DBSCAN calibration; the last in a plane with
+// open boundaries, planar_candidate_pairs).
 //
 // Cells: every axis is cut into equal cells no thinner than a quarter of the cut-off, of the width
 // that makes the least estimated work (fine in a dense system, about the cut-off in a dilute one,
@@ -20,6 +22,7 @@
 // pair's separation is the same expression, so the pairs and separations are bit for bit those of
 // the O(N²) loop over wrapped coordinates.
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #include "anisodyn/core/box.hpp"
@@ -81,6 +84,17 @@ class PairGrid {
   Int3 n_ = Int3::Ones();
   std::vector<CellOffset> stencil_;
 };
+
+/// A point of a plane (the (r_∥, r_⊥) points of the DBSCAN calibration).
+struct Point2 {
+  double x = 0.0, y = 0.0;
+};
+
+/// The pairs i < j of plane points (open boundaries) closer than `reach`, in the order of the cell
+/// sweep, which is the same for the same points. The distances are measured on the points shifted to
+/// the origin, so they may round differently in the last bit from the caller's own: a caller with an
+/// exact criterion reaches a little farther and tests the candidates on its own coordinates.
+std::vector<std::pair<std::size_t, std::size_t>> planar_candidate_pairs(const std::vector<Point2>& points, double reach);
 
 struct ClosePair {
   std::size_t i = 0, j = 0;  // i < j, indices into the position list

@@ -9,14 +9,13 @@
 //
 // The driver also reads the time window every stage takes (`window`, frame_window.hpp): each_replica
 // loads only the window's frames and records the window in the output. A stage states how many
-// frames it needs in TrajectoryNeeds::min_frames.
+// frames it needs in TrajectoryNeeds::min_frames. A stage that analyses each species on its own runs
+// through run_per_species (per_species_stage.hpp).
 #include <functional>
 #include <string>
-#include <type_traits>
 #include <vector>
 
 #include "anisodyn/analysis/analysis_output.hpp"
-#include "anisodyn/analysis/species_selection.hpp"
 #include "anisodyn/analysis/trajectory.hpp"
 #include "anisodyn/tool/command_line.hpp"
 #include "anisodyn/tool/json_config.hpp"
@@ -40,23 +39,6 @@ struct StageRun {
   /// A parameter error: InputError naming the config file and `key` (a path like "reference").
   [[noreturn]] void fail(const std::string& key, const std::string& problem) const;
 };
-
-/// The common shape of a per-species stage: one Analysis(settings, replica count) per selected
-/// species (`species` empty = every species), fed every replica through accumulate(t, index).
-template <class Analysis, class Settings>
-std::vector<std::pair<SelectedSpecies, Analysis>> analyse_each_species(const StageRun& run, const Settings& settings,
-                                                                       const std::string& species, const TrajectoryNeeds& needs) {
-  std::vector<std::pair<SelectedSpecies, Analysis>> analyses;
-  for (const auto& sp : select_species(run.inputs.front(), species, run.opt.config_name(), "species"))
-    if constexpr (std::is_constructible_v<Analysis, const Settings&, std::size_t, std::string>)
-      analyses.emplace_back(sp, Analysis(settings, run.inputs.size(), run.opt.config_name()));  // names the config in errors
-    else
-      analyses.emplace_back(sp, Analysis(settings, run.inputs.size()));
-  run.each_replica(needs, [&](const Trajectory& t, std::size_t) {
-    for (auto& [sp, a] : analyses) a.accumulate(t, sp.index);
-  });
-  return analyses;
-}
 
 int run_analysis_stage(int argc, char** argv, const tool::ToolInfo& info, const std::function<void(StageRun&)>& body);
 

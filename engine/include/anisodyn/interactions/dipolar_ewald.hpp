@@ -13,9 +13,10 @@
 // Implementation notes (details in the .cpp):
 //   - real space: a loop over all particles j in index order with the minimum image and r < r_cut
 //     (r_cut ≤ half the shortest edge). B and C are split into the bare parts 1/r³, 3/r⁵ (computed
-//     exactly) and remainders b(r²), c(r²), entire functions of r², evaluated as one polynomial
-//     each on [0, r_cut²] (degree 12–48 chosen for an error ≲ 1e-15 of their scale; no table
-//     look-ups, so the loop vectorises). total_energy and delta_energy use the same pair function,
+//     exactly, by bare_dipolar_psi of dipolar_pair.hpp, the pair function the analyses share) and
+//     remainders b(r²), c(r²), entire functions of r², evaluated as one polynomial each on
+//     [0, r_cut²] (degree 12–48 chosen for an error ≲ 1e-15 of their scale; no table look-ups, so
+//     the loop vectorises). total_energy and delta_energy use the same pair function,
 //     so ΔU equals the difference of totals to rounding.
 //   - reciprocal space: the half space of k = 2π(n_x/L_x, n_y/L_y, n_z/L_z) with |k| ≤ 2π n_max/L_max
 //     (a sphere in k space: the scaled ellipsoid in n space for a non-cubic box), stored as columns
@@ -143,9 +144,5 @@ class DipolarEwald {
   std::size_t pending_ = static_cast<std::size_t>(-1);
   bool pending_noop_ = false;
 };
-
-/// Bare minimum-image pair energy βu_ij = (γ/2)(1 − 3(Ê·r̂)²)/r³ (cluster criteria, spec §6.4).
-/// r is the (minimum-image) separation; direction need not be normalised.
-double dipolar_pair_energy(const Vec3& r, const Vec3& direction, double gamma);
 
 }  // namespace anisodyn
