@@ -21,7 +21,9 @@ decltype(auto) with_traits(ShapeKind kind, F&& f) {
 double Shape::circumradius() const { return with_traits(kind, [&](auto t) { return decltype(t)::circumradius(*this); }); }
 double Shape::inscribed_radius() const { return with_traits(kind, [&](auto t) { return decltype(t)::inscribed_radius(*this); }); }
 double Shape::volume() const { return with_traits(kind, [&](auto t) { return decltype(t)::volume(*this); }); }
-bool Shape::is_anisotropic() const { return with_traits(kind, [](auto t) { return decltype(t)::anisotropic; }); }
+#define ANISODYN_SHAPE_ANISOTROPIC(Name) ShapeTraits<ShapeKind::Name>::anisotropic,
+const bool kShapeAnisotropic[kShapeKindCount] = {ANISODYN_SHAPES(ANISODYN_SHAPE_ANISOTROPIC)};
+#undef ANISODYN_SHAPE_ANISOTROPIC
 Shape Shape::grown(double t) const { return with_traits(kind, [&](auto tr) { return decltype(tr)::grown(*this, t); }); }
 Vec3 Shape::lab_half_extents(const Mat3& R) const {
   return with_traits(kind, [&](auto t) -> Vec3 { return decltype(t)::lab_half_extents(*this, R); });

@@ -28,6 +28,10 @@ enum class ShapeKind { ANISODYN_SHAPES(ANISODYN_SHAPE_ENUM) };
 inline constexpr int kShapeKindCount = 0 ANISODYN_SHAPES(ANISODYN_SHAPE_COUNT);
 #undef ANISODYN_SHAPE_COUNT
 
+/// Whether each kind has an orientation (ShapeTraits::anisotropic, shape.cpp): a table, so that the
+/// per-trial-move question costs a load, not a call.
+extern const bool kShapeAnisotropic[kShapeKindCount];
+
 struct Shape {
   ShapeKind kind = ShapeKind::Sphere;
   Vec3 edges = Vec3::Zero();  // full extents along the body axes: cuboid edges (T, W, L), ellipsoid 2 × semi-axes
@@ -53,7 +57,7 @@ struct Shape {
   double inscribed_radius() const;
   double volume() const;
   /// Whether the body has an orientation at all (spheres don't rotate).
-  bool is_anisotropic() const;
+  bool is_anisotropic() const { return kShapeAnisotropic[static_cast<int>(kind)]; }
   /// A body of the same kind containing every point within distance t of this one (t ≥ 0).
   Shape grown(double t) const;
   /// Half-extents along the lab axes of the body with rotation matrix R (columns = body axes): the
