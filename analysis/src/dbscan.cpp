@@ -119,11 +119,7 @@ std::size_t knee_index(const std::vector<double>& d) {
 DbscanCalibrationSettings parse_dbscan_settings(tool::ConfigNode& cfg) {
   DbscanCalibrationSettings s;
   s.species = cfg.string("species", "");
-  s.rule.gamma = cfg.positive("gamma");
-  s.rule.sigma = cfg.positive("sigma", 1.0);
-  const Vec3 e = cfg.vec3("field_direction", Vec3::UnitZ());
-  if (!(e.norm() > 0)) cfg.fail("field_direction", "expected a non-zero direction vector");
-  s.rule.field = e.normalized();
+  s.rule = parse_dipolar_bond_rule(cfg, false);
   s.min_pts = static_cast<std::size_t>(cfg.positive_integer("min_pts", 10));
   if (cfg.has("eps")) s.eps = cfg.positive("eps");
   s.r_max = cfg.positive("r_max", 2.0 * s.rule.sigma);

@@ -47,4 +47,18 @@ std::vector<char> dipolar_chain_mask(const std::vector<Vec3>& positions, const B
   return mask;
 }
 
+DipolarBondRule parse_dipolar_bond_rule(tool::ConfigNode& cfg, bool with_threshold) {
+  DipolarBondRule rule;
+  rule.gamma = cfg.positive("gamma");
+  rule.sigma = cfg.positive("sigma", 1.0);
+  if (with_threshold) {
+    rule.bu_max = cfg.number("bu_max", -3.20);
+    if (!(rule.bu_max < 0)) cfg.fail("bu_max", "expected a negative bond energy threshold (kT)");
+  }
+  const Vec3 e = cfg.vec3("field_direction", Vec3::UnitZ());
+  if (!(e.norm() > 0)) cfg.fail("field_direction", "expected a non-zero direction vector");
+  rule.field = e.normalized();
+  return rule;
+}
+
 }  // namespace anisodyn::analysis

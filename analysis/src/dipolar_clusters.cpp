@@ -153,13 +153,7 @@ WertheimFit fit_wertheim(const CurveSamples& samples) {
 DipolarClusterSettings parse_dipolar_cluster_settings(tool::ConfigNode& cfg) {
   DipolarClusterSettings s;
   s.species = cfg.string("species", "");
-  s.rule.gamma = cfg.positive("gamma");
-  s.rule.sigma = cfg.positive("sigma", 1.0);
-  s.rule.bu_max = cfg.number("bu_max", -3.20);
-  if (!(s.rule.bu_max < 0)) cfg.fail("bu_max", "expected a negative bond energy threshold (kT)");
-  const Vec3 e = cfg.vec3("field_direction", Vec3::UnitZ());
-  if (!(e.norm() > 0)) cfg.fail("field_direction", "expected a non-zero direction vector");
-  s.rule.field = e.normalized();
+  s.rule = parse_dipolar_bond_rule(cfg, true);
   if (cfg.has("transition_times")) {
     s.transition_times = cfg.numbers("transition_times");
     for (double t : s.transition_times)

@@ -13,6 +13,7 @@
 #include "anisodyn/analysis/union_find.hpp"
 #include "anisodyn/core/box.hpp"
 #include "anisodyn/core/types.hpp"
+#include "anisodyn/tool/json_config.hpp"
 
 namespace anisodyn::analysis {
 
@@ -22,6 +23,10 @@ struct DipolarBondRule {
   double bu_max = -3.20;       // bond threshold (kT), must be negative (spec 50 §5.2)
   Vec3 field = Vec3::UnitZ();  // unit field direction Ê
 };
+
+/// Reads the rule's coupling from a stage configuration: gamma (required), sigma (default 1) and
+/// field_direction (default z, normalised); bu_max when `with_threshold` (default −3.20, negative).
+DipolarBondRule parse_dipolar_bond_rule(tool::ConfigNode& cfg, bool with_threshold);
 
 /// Largest separation at which βu < βu_max is possible: σ (γ/|βu_max|)^{1/3} (θ = 0).
 double dipolar_bond_cutoff(const DipolarBondRule& rule);
