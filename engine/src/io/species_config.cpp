@@ -100,11 +100,10 @@ Species parse_species(tool::ConfigNode node, nlohmann::json* diffusion_origin) {
   s.name = node.string("name");
   if (s.name.empty()) node.fail("name", "expected a non-empty species name");
   s.mass = node.positive("mass", 1.0);
-  const bool from_file = node.has("diffusion_from");
   const std::optional<Shape> given = node.has("shape") ? std::optional(parse_shape(node.object("shape"))) : std::nullopt;
   const DiffusionSpec d = parse_diffusion(node, given);
-  if (!from_file && !given) parse_shape(node.object("shape"));  // the missing shape's error
-  s.shape = from_file ? *d.shape : *given;
+  // A species file entry brings its shape; otherwise "shape" is required (node.object reports it).
+  s.shape = d.shape ? *d.shape : given ? *given : parse_shape(node.object("shape"));
   s.D_trans = d.D_trans.value_or(Vec3::Zero());
   s.D_rot = d.D_rot.value_or(Vec3::Zero());
   if (diffusion_origin) *diffusion_origin = d.origin;

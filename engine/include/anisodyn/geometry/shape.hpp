@@ -12,6 +12,7 @@
 // do — parse and print its JSON, radii, volume, motion bounds, overlap tests — is written once per
 // shape in its header (ShapeTraits) and reached through the members below, which dispatch on the
 // kind over the list of geometry/shape_list.hpp.
+#include <cmath>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -68,6 +69,20 @@ struct Shape {
   /// The shape as JSON, {"type": name, parameters…}, which parse_shape reads back.
   nlohmann::json spec() const;
 };
+
+/// For bodies described by their extents along the body axes (cuboids, ellipsoids): a body point c
+/// has |c_k| ≤ half_k, so under a rotation from → to it moves by |(to − from)c| ≤ Σ_k half_k
+/// |to_k − from_k|, each axis's swing times the half-extent along it.
+inline double extent_swing(const Vec3& half, const Mat3& from, const Mat3& to) {
+  double bound = 0.0;
+  for (int k = 0; k < 3; ++k) bound += half[k] * (to.col(k) - from.col(k)).norm();
+  return bound;
+}
+
+/// For the same bodies, the body axis that follows a nematic director: L (body z) for rod-like
+/// bodies, T (body x, the short axis) for plate-like ones, split at the geometric mean: W ≤ √(T·L)
+/// is rod-like (spec 10 §3.2).
+inline int extent_alignment_axis(const Vec3& edges) { return edges.y() <= std::sqrt(edges.x() * edges.z()) ? 2 : 0; }
 
 /// An upper bound on how far any point of the body moves from placement (0, from) to (dr, to)
 /// (rotation matrices, columns = body axes): every point of the moved body lies within this

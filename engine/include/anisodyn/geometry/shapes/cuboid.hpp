@@ -36,21 +36,10 @@ struct ShapeTraits<ShapeKind::Cuboid> {
     g.edges.array() += 2.0 * t;
     return g;
   }
-  /// A body point c moves by (to − from)c under the rotation, and |(to − from)c| ≤ Σ_k |c_k|
-  /// |to_k − from_k|: each axis's swing times the half-extent along it.
-  static double swing(const Shape& s, const Mat3& from, const Mat3& to) {
-    double bound = 0.0;
-    for (int k = 0; k < 3; ++k) bound += 0.5 * s.edges[k] * (to.col(k) - from.col(k)).norm();
-    return bound;
-  }
+  static double swing(const Shape& s, const Mat3& from, const Mat3& to) { return extent_swing(s.half_extents(), from, to); }
   static Vec3 lab_half_extents(const Shape& s, const Mat3& R) { return R.cwiseAbs() * s.half_extents(); }
 
-  /// The body axis that follows a nematic director: L for rod-like bodies, T (the short axis) for
-  /// plate-like ones, split at the geometric mean: W ≤ √(T·L) is rod-like.
-  static int alignment_axis(const Shape& s) {
-    const Vec3& e = s.edges;
-    return e.y() <= std::sqrt(e.x() * e.z()) ? 2 : 0;
-  }
+  static int alignment_axis(const Shape& s) { return extent_alignment_axis(s.edges); }
 
   static bool cuboid_sphere(const Shape& a, const Mat3& Ra, const Shape& b, const Mat3&, const Vec3& t) {
     return overlap_cuboid_sphere(Ra, a.half_extents(), t, 0.5 * b.diameter);

@@ -32,23 +32,13 @@ struct ShapeTraits<ShapeKind::Ellipsoid> {
   static Shape grown(const Shape& s, double t) {
     return Shape::ellipsoid(s.half_extents() * (1.0 + t / (0.5 * s.edges.minCoeff())));
   }
-  /// As for a cuboid: a body point has |c_k| ≤ a_k along each axis.
-  static double swing(const Shape& s, const Mat3& from, const Mat3& to) {
-    double bound = 0.0;
-    for (int k = 0; k < 3; ++k) bound += 0.5 * s.edges[k] * (to.col(k) - from.col(k)).norm();
-    return bound;
-  }
+  static double swing(const Shape& s, const Mat3& from, const Mat3& to) { return extent_swing(s.half_extents(), from, to); }
   /// Exact: the support of the ellipsoid along lab axis i is sqrt(Σ_k (R_ik a_k)²).
   static Vec3 lab_half_extents(const Shape& s, const Mat3& R) {
     return (R * s.half_extents().asDiagonal()).rowwise().norm();
   }
 
-  /// The body axis that follows a nematic director: L for rod-like bodies, T (the short axis) for
-  /// plate-like ones, split at the geometric mean: W ≤ √(T·L) is rod-like.
-  static int alignment_axis(const Shape& s) {
-    const Vec3& e = s.edges;
-    return e.y() <= std::sqrt(e.x() * e.z()) ? 2 : 0;
-  }
+  static int alignment_axis(const Shape& s) { return extent_alignment_axis(s.edges); }
 
   static bool ellipsoid_sphere(const Shape& a, const Mat3& Ra, const Shape& b, const Mat3&, const Vec3& t) {
     return overlap_ellipsoid_sphere(a.half_extents(), Ra, 0.5 * b.diameter, t);
