@@ -61,7 +61,7 @@ def phases(path):
         for ph in summary["phases"]:
             sel = (steps > ph["first_cycle"]) & (steps <= ph["last_cycle"])
             row = {"label": ph["label"], "first_cycle": ph["first_cycle"], "last_cycle": ph["last_cycle"],
-                   "phase": ph.get("phase", ""), "sample_every": int(steps[1] - steps[0]),
+                   "phase": ph.get("phase", ""), "observe_every": int(steps[1] - steps[0]),
                    "eta": describe(eta[sel, 0]), "order": {}}
             for sp in species:
                 s_steps, order = series(f, f"order_{sp}")
@@ -76,7 +76,7 @@ def main():
     for path in sys.argv[1:]:
         for ph in phases(path):
             m, e, eb, ea, tau = ph["eta"]
-            row = f"| {path} | {ph['label']} | {ph['first_cycle']}–{ph['last_cycle']} | {m:.5f} ± {e:.5f} ({100 * e / m:.2f}%; blocking {eb:.5f}, autocorr. {ea:.5f}, τ_int {tau * ph['sample_every']:.0f} cycles)"
+            row = f"| {path} | {ph['label']} | {ph['first_cycle']}–{ph['last_cycle']} | {m:.5f} ± {e:.5f} ({100 * e / m:.2f}%; blocking {eb:.5f}, autocorr. {ea:.5f}, τ_int {tau * ph['observe_every']:.0f} cycles)"
             for sp, stats in ph["order"].items():
                 parts = [f"U_{axis} = {mo:.4f} ± {eo:.4f}" for axis, (mo, eo, *_) in zip("TWL", stats)]
                 row += f" | {sp}: " + ", ".join(parts) + f" | {ph['phase']}"

@@ -28,13 +28,18 @@ inline State lattice_at(const Species& sp, std::size_t n, double eta) {
   return s;
 }
 
-/// The state cached as `name`, or make() written to the cache first.
-template <class Make>
-State cached_state(const std::string& name, Make&& make) {
+/// The cache folder ($ANISODYN_BENCH_CACHE, default ./bench-cache), created if missing.
+inline std::string cache_dir() {
   const char* env = std::getenv("ANISODYN_BENCH_CACHE");
   const std::string dir = env ? env : "bench-cache";
   std::filesystem::create_directories(dir);
-  const std::string path = dir + "/" + name + ".h5";
+  return dir;
+}
+
+/// The state cached as `name`, or make() written to the cache first.
+template <class Make>
+State cached_state(const std::string& name, Make&& make) {
+  const std::string path = cache_dir() + "/" + name + ".h5";
   if (std::filesystem::exists(path)) return io::H5mdReader(path).read_frame(-1);
   State s = make();
   io::H5mdWriter w(path, {"anisodyn", "", "bench", nlohmann::json::object(), nlohmann::json::object(), s.species});
@@ -43,7 +48,8 @@ State cached_state(const std::string& name, Make&& make) {
   return s;
 }
 
-/// NVT MC with move tuning on `s`, in place; logs the phase summary under `name`.
+/// NVT MC with move tuning on `s`, in place; logs the phase summary under `name`. The run's
+/// trajectory is not kept (the writer is dropped without commit, which removes it).
 inline void melt(State& s, const std::string& name, std::int64_t cycles) {
   McProtocol proto;
   McPhase phase;
@@ -52,7 +58,9 @@ inline void melt(State& s, const std::string& name, std::int64_t cycles) {
   phase.tune = true;
   proto.phases = {phase};
   McRunner runner(s, proto, false);
-  runner.run(0, [] {});
+  io::H5mdWriter discarded(cache_dir() + "/" + name + ".melt.h5", {"anisodyn", "", "bench", nlohmann::json::object(),
+                                                                   nlohmann::json::object(), s.species});
+  runner.run(discarded, 0, [] {});
   std::fprintf(stderr, "prepared %s: %s\n", name.c_str(), runner.summary()["phases"][0].dump().c_str());
 }
 

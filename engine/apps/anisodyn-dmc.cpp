@@ -1,16 +1,15 @@
 // anisodyn-dmc: Dynamic Monte Carlo production runs of hard particles (spec 10 §4–7) from an H5MD
 // state to an H5MD trajectory. Frames and per-cycle observables stream into <output>.partial;
-// checkpoints go to <output>.checkpoint.h5, and running the same command again resumes from it.
+// checkpoints go to <output>.checkpoint.h5, and running the same command again resumes from it
+// (run/run_files.hpp).
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 
 #include "anisodyn/core/error.hpp"
-#include "anisodyn/core/signals.hpp"
 #include "anisodyn/dmc/dmc_runner.hpp"
-#include "anisodyn/tool/atomic_file.hpp"
-#include "anisodyn/tool/command_line.hpp"
 #include "anisodyn/io/h5md.hpp"
+#include "anisodyn/run/run_files.hpp"
+#include "anisodyn/tool/command_line.hpp"
 #include "anisodyn/tool/provenance.hpp"
 
 using namespace anisodyn;
@@ -81,22 +80,8 @@ int main(int argc, char** argv) {
     parameters["seed"] = protocol.seed;
     parameters["replica"] = protocol.replica;
 
-    const std::string checkpoint_path = opt.output + ".checkpoint.h5";
-    const bool resuming = std::filesystem::exists(checkpoint_path);
-    State state;
-    nlohmann::json engine_state;
-    if (resuming) {
-      const io::H5mdReader checkpoint(checkpoint_path);
-      if (checkpoint.parameters() != parameters)
-        throw InputError(checkpoint_path, "/parameters", "a checkpoint of the same configuration; this one was written with "
-                                                         "different parameters: delete it to start afresh");
-      const auto j = checkpoint.checkpoint();
-      if (!j) throw InputError(checkpoint_path, "/anisodyn/checkpoint", "an engine state");
-      state = checkpoint.read_frame(-1);
-      engine_state = *j;
-    } else {
-      state = io::H5mdReader(input).read_frame(-1);
-    }
+    run::RunFiles files(opt.output, parameters);
+    State state = files.starting_state(input);
     state.step = 0;
     state.time = 0.0;
     require_minimum_image(state, input);
@@ -111,30 +96,11 @@ int main(int argc, char** argv) {
     nlohmann::json provenance = tool::make_provenance(info.name, opt.argv, opt.inputs);
     if (!protocol.diffusion_origins.empty()) provenance["diffusion_sources"] = protocol.diffusion_origins;
     const io::H5mdHeader header{"anisodyn", "", "anisodyn user", parameters, provenance, state.species};
-    std::optional<io::H5mdWriter> out;
-    if (resuming) {
-      runner->restore(engine_state.at("runner"));
-      out.emplace(io::H5mdWriter::resume(opt.output, runner->last_output_step()));
-      if (!opt.quiet) std::fprintf(stderr, "anisodyn-dmc: resuming from %s\n", checkpoint_path.c_str());
-    } else {
-      out.emplace(opt.output, header);
+    if (files.resuming()) {
+      runner->restore(files.engine_state().at("runner"));
+      if (!opt.quiet) std::fprintf(stderr, "anisodyn-dmc: resuming from %s\n", files.checkpoint_path().c_str());
     }
-
-    auto checkpoint = [&] {
-      const nlohmann::json j{{"runner", runner->checkpoint_state()}};
-      out->write_checkpoint(j);  // flushes the streamed output first
-      io::write_checkpoint_file(checkpoint_path, header, state, j);
-    };
-    install_interrupt_handlers();
-    try {
-      runner->run(*out, opt.checkpoint_every.value_or(0), checkpoint);
-    } catch (const Interrupted&) {
-      out->suspend();
-      throw;
-    }
-    out->write_checkpoint({{"runner", runner->checkpoint_state()}});
-    out->commit();
-    std::filesystem::remove(checkpoint_path);
+    files.run_to_completion(header, state, *runner, opt.checkpoint_every.value_or(0));
     std::cout << runner->summary().dump(2) << std::endl;
   });
 }

@@ -1,62 +1,35 @@
 // anisodyn-mc: Metropolis MC preparation runs (compression, NPT, NVT, optional orientational
-// field) from an H5MD state to an H5MD trajectory. Checkpoints to <output>.checkpoint.h5 and
-// resumes from it when run again with the same configuration.
-#include <unistd.h>
-
+// field) from an H5MD state to an H5MD trajectory. Frames and observables stream into
+// <output>.partial; checkpoints go to <output>.checkpoint.h5, and running the same command again
+// resumes from it (run/run_files.hpp).
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 
-#include "anisodyn/core/signals.hpp"
 #include "anisodyn/core/error.hpp"
-#include "anisodyn/tool/atomic_file.hpp"
-#include "anisodyn/tool/command_line.hpp"
 #include "anisodyn/io/h5md.hpp"
-#include "anisodyn/tool/provenance.hpp"
 #include "anisodyn/mc/protocol_config.hpp"
+#include "anisodyn/run/run_files.hpp"
+#include "anisodyn/tool/command_line.hpp"
+#include "anisodyn/tool/provenance.hpp"
 
 using namespace anisodyn;
 
 namespace {
-
-void write_trajectory(io::H5mdWriter& w, const McRunner& runner) {
-  for (const State& f : runner.frames()) w.append_frame(f);
-  for (const auto& [name, s] : runner.observables()) {
-    for (std::size_t r = 0; r < s.step.size(); ++r) {
-      const auto first = s.value.begin() + static_cast<std::ptrdiff_t>(r * s.width);
-      w.append_observable(name, s.step[r], s.time[r], std::vector<double>(first, first + static_cast<std::ptrdiff_t>(s.width)));
-    }
-    w.set_observable_attribute(name, "definition", s.definition);
-    w.set_observable_attribute(name, "units", name.rfind("box_edges", 0) == 0 ? "length unit of the study" : "1");
-  }
-}
-
-std::map<std::string, Series> read_observables(const io::H5mdReader& r) {
-  std::map<std::string, Series> out;
-  for (const auto& name : r.observable_names()) {
-    const auto s = r.read_observable(name);
-    Series& d = out[name];
-    d.step = s.step;
-    d.time = s.time;
-    d.value = s.value;
-    d.width = s.width;
-    d.definition = r.observable_attribute(name, "definition").value_or("");
-  }
-  return out;
-}
 
 tool::Description description() {
   tool::Description d;
   d.role = tool::Role::Engine;
   d.replica = true;
   d.inputs = {"state", 1, 1, "the starting state (its last frame)"};
-  d.output = {"trajectory", "H5MD", "stored frames (always the final state), observables every sample_every cycles, the summary", nullptr};
+  d.output = {"trajectory", "H5MD", "frames by the frames rules (always the final state), observables every observe_every cycles, the summary",
+              nullptr};
   d.parameters = {
       tool::seed_parameter(),
       tool::optional("target_acceptance", "number", 0.35, "target acceptance of move-size tuning (only when a phase tunes)"),
       tool::optional("tune_every", "integer", 100, "cycles between tuning updates (only when a phase tunes)"),
-      tool::optional("sample_every", "integer", 10, "cycles between observable samples"),
-      tool::optional("frame_every", "integer", 0, "cycles between stored frames (0: the final frame only)"),
+      tool::optional("observe_every", "integer", 10, "cycles between observable samples"),
+      tool::optional("frames", "object", nullptr, "frame rules: every_cycles, log_cycles {per_decade, restart_every}; none: the final frame only "
+                                                  "(docs/run.md)"),
       tool::optional("field", "object", nullptr,
                      "orientational field on for the whole run: {direction, orientational {strength, axis}} (docs/run.md)"),
       tool::required("phases", "array", "the protocol: phases {type: compress | npt | nvt, ...} run in order (docs/mc.md)"),
@@ -90,27 +63,10 @@ int main(int argc, char** argv) {
     parameters["seed"] = protocol.seed;
     if (protocol.replica) parameters["replica"] = protocol.replica;
 
-    // Resuming starts from the checkpoint's last frame; otherwise from the input's. Either way the
-    // starting state is read once.
-    const std::string checkpoint_path = opt.output + ".checkpoint.h5";
-    std::unique_ptr<io::H5mdReader> checkpoint_reader;
-    nlohmann::json engine_state;
-    std::size_t frames_kept = 0;
-    State state;
-    if (std::filesystem::exists(checkpoint_path)) {
-      checkpoint_reader = std::make_unique<io::H5mdReader>(checkpoint_path);
-      if (checkpoint_reader->parameters() != parameters)
-        throw InputError(checkpoint_path, "/parameters", "a checkpoint of the same configuration; this one was written with "
-                                                         "different parameters: delete it to start afresh");
-      const auto j = checkpoint_reader->checkpoint();
-      if (!j) throw InputError(checkpoint_path, "/anisodyn/checkpoint", "an engine state");
-      engine_state = *j;
-      frames_kept = engine_state.at("frames_kept").get<std::size_t>();
-      state = checkpoint_reader->read_frame(static_cast<std::ptrdiff_t>(frames_kept));
-    } else {
-      state = io::H5mdReader(input).read_frame(-1);
-    }
-    const std::string& state_file = checkpoint_reader ? checkpoint_path : input;
+    // Resuming starts from the checkpoint's state; otherwise from the input's last frame.
+    run::RunFiles files(opt.output, parameters);
+    State state = files.starting_state(input);
+    const std::string& state_file = files.resuming() ? files.checkpoint_path() : input;
     require_minimum_image(state, state_file);
 
     std::unique_ptr<McRunner> runner;
@@ -119,31 +75,14 @@ int main(int argc, char** argv) {
     } catch (const InputError& e) {
       throw InputError(state_file, "/particles/all", e.what());
     }
-    if (checkpoint_reader) {
-      std::vector<State> frames;
-      for (std::size_t f = 0; f < frames_kept; ++f) frames.push_back(checkpoint_reader->read_frame(static_cast<std::ptrdiff_t>(f)));
-      runner->restore(engine_state.at("runner"), read_observables(*checkpoint_reader), std::move(frames));
-      if (!opt.quiet) std::fprintf(stderr, "anisodyn-mc: resuming from %s at cycle %lld\n", checkpoint_path.c_str(),
+    if (files.resuming()) {
+      runner->restore(files.engine_state().at("runner"));
+      runner->restore_phase_samples(files.partial_output());
+      if (!opt.quiet) std::fprintf(stderr, "anisodyn-mc: resuming from %s at cycle %lld\n", files.checkpoint_path().c_str(),
                                    static_cast<long long>(state.step));
     }
     const io::H5mdHeader header{"anisodyn", "", "anisodyn user", parameters, tool::make_provenance(info.name, opt.argv, opt.inputs), state.species};
-    auto checkpoint = [&] {
-      io::H5mdWriter w(checkpoint_path, header);
-      write_trajectory(w, *runner);
-      w.append_frame(state);
-      nlohmann::json engine_state{{"frames_kept", runner->frames().size()}, {"runner", runner->checkpoint_state()}};
-      w.write_checkpoint(engine_state);
-      w.commit();
-    };
-
-    install_interrupt_handlers();
-    runner->run(opt.checkpoint_every.value_or(0), checkpoint);
-
-    io::H5mdWriter writer(opt.output, header);
-    write_trajectory(writer, *runner);
-    writer.write_checkpoint({{"frames_kept", runner->frames().size()}, {"runner", runner->checkpoint_state()}});
-    writer.commit();
-    std::filesystem::remove(checkpoint_path);
+    files.run_to_completion(header, state, *runner, opt.checkpoint_every.value_or(0));
     std::cout << runner->summary().dump(2) << std::endl;
   });
 }

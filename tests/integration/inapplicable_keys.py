@@ -43,7 +43,7 @@ CONFIG = {"seed": 1, "species": [BOARD, BALL],
           "composition": [{"species": "board", "count": 8, "orientation": {"mode": "aligned", "axis": "L"}},
                           {"species": "ball", "count": 8}],
           "box": {"packing_fraction": 0.02}, "placement": "lattice"}
-MC = {"seed": 2, "sample_every": 10,
+MC = {"seed": 2, "observe_every": 10,
       "phases": [{"type": "compress", "method": "npt", "packing_fraction": 0.03, "max_cycles": 200000},
                  {"type": "npt", "pressure": 0.01, "cycles": 20},
                  {"type": "nvt", "cycles": 20, "tune": True}]}
@@ -100,6 +100,9 @@ CASES = [
     ("target_acceptance when nothing tunes", "mc", MC, MIXED,
      {"phases": [{"type": "nvt", "cycles": 10}], "target_acceptance": 0.3}, "target_acceptance"),
     ("tune_every when nothing tunes", "mc", MC, MIXED, {"phases": [{"type": "nvt", "cycles": 10}], "tune_every": 5}, "tune_every"),
+    ("frames in time in a preparation run", "mc", MC, MIXED, {"frames": {"every_time": 10}}, "frames.every_time"),
+    ("frames after a switch in a preparation run", "mc", MC, MIXED, {"frames": {"after_switch": {"every_cycles": 1, "for_cycles": 5}}},
+     "frames.after_switch"),
     # anisodyn-dmc
     ("smoothing_cycles at equilibrium", "dmc", DMC, MIXED, {"balance.smoothing_cycles": 5}, "balance.smoothing_cycles"),
     ("preliminary_cycles per cycle", "dmc", DMC, MIXED, {"balance": {"mode": "per_cycle", "reference": "probe", "preliminary_cycles": 10}},

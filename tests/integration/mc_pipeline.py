@@ -4,8 +4,9 @@
 1. an uninterrupted run;
 2. the same run interrupted by SIGINT (must exit 130 and leave a checkpoint, no output), then resumed;
 3. the same run killed by SIGKILL after a periodic checkpoint, then resumed;
-both resumed runs must end bit-for-bit equal to the uninterrupted one (positions, orientations,
-box, every observable). Then the MC output is opened with MDAnalysis's H5MD reader (skipped if
+both resumed runs must end bit-for-bit equal to the uninterrupted one (frame steps, positions,
+orientations, box, every observable) and print the same summary (its phase statistics need the
+interrupted phase's samples, which the resumed run reads back from its partial output). Then the MC output is opened with MDAnalysis's H5MD reader (skipped if
 MDAnalysis is missing) and compared with h5py.
 """
 import json
@@ -32,7 +33,7 @@ config = {
                     {"species": "hs", "count": 40}],
     "box": {"packing_fraction": 0.01},
 }
-mc = {"seed": 9, "sample_every": 10, "frame_every": 5000,
+mc = {"seed": 9, "observe_every": 10, "frames": {"every_cycles": 5000},
       "phases": [{"type": "compress", "packing_fraction": 0.06, "cycles_per_step": 100},
                  {"type": "nvt", "cycles": 3000, "tune": True},
                  {"type": "nvt", "cycles": 40000}]}
@@ -67,7 +68,7 @@ def interrupted_run(out, sig, delay):
 
 def compare(a, b):
     with h5py.File(a) as fa, h5py.File(b) as fb:
-        for key in ("particles/all/position/value", "particles/all/orientation/value", "particles/all/image/value",
+        for key in ("particles/all/position/step", "particles/all/position/value", "particles/all/orientation/value", "particles/all/image/value",
                     "particles/all/box/edges/value"):
             assert np.array_equal(fa[key][...], fb[key][...]), f"{key} differs between {a} and {b}"
         names = set(fa["observables"].keys())
@@ -83,6 +84,7 @@ assert code == 130, f"SIGINT: exit code {code}, expected 130 ({err})"
 assert os.path.exists("sigint.h5.checkpoint.h5") and not os.path.exists("sigint.h5"), "SIGINT must leave a checkpoint and no output"
 r = run(mc_args("sigint.h5"))
 assert r.returncode == 0, r.stderr
+assert json.loads(r.stdout) == summary, "the resumed run's summary differs from the uninterrupted run's"
 assert not os.path.exists("sigint.h5.checkpoint.h5"), "checkpoint must be removed after completion"
 n = compare("straight.h5", "sigint.h5")
 print(f"SIGINT after {min(1.0, duration / 3):.2f} s -> exit 130, resumed: identical ({n} observables compared)")
@@ -100,6 +102,7 @@ assert os.path.exists("killed.h5.checkpoint.h5"), "no periodic checkpoint before
 assert not os.path.exists("killed.h5")
 r = run(mc_args("killed.h5"))
 assert r.returncode == 0, r.stderr
+assert json.loads(r.stdout) == summary, "the resumed run's summary differs from the uninterrupted run's"
 compare("straight.h5", "killed.h5")
 print("SIGKILL after a periodic checkpoint, resumed: identical")
 

@@ -42,7 +42,7 @@ MANIFEST = {
                     "composition": [{"species": "hs", "count": 150}], "box": {"packing_fraction": "${grid.eta}"},
                     "placement": "lattice"}},
         {"name": "mc", "tool": "mc", "replicate": False, "inputs": ["config"],
-         "params": {"seed": 8, "sample_every": 50, "phases": [{"type": "nvt", "label": "melt", "cycles": 300, "tune": True}]}},
+         "params": {"seed": 8, "observe_every": 50, "phases": [{"type": "nvt", "label": "melt", "cycles": 300, "tune": True}]}},
         {"name": "dmc", "tool": "dmc", "inputs": ["mc"],
          "params": {"seed": 9, "cycles": 40000, "time_step": {"hs": 0.01}, "frames": {"every_cycles": 400}, "observe_every": 100}},
         {"name": "msd", "tool": "msd", "inputs": ["dmc"], "params": {"species": "hs"}},

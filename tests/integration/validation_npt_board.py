@@ -53,7 +53,7 @@ for i, output in enumerate(run.outputs("mc")):
     x = series_eta[(steps > ph["first_cycle"]) & (steps <= ph["last_cycle"]), 0]
     halves = [describe(h.copy())[:2] for h in (x[: len(x) // 2], x[len(x) // 2:])]
     order = ", ".join(f"{m:.4f}" for m, *_ in ph["order"]["board"])
-    print(f"| {pressure} | {i} | {eta:.5f} ± {se:.5f} | {se / eta:.2%} | {tau * ph['sample_every']:.0f} cycles "
+    print(f"| {pressure} | {i} | {eta:.5f} ± {se:.5f} | {se / eta:.2%} | {tau * ph['observe_every']:.0f} cycles "
           f"| {halves[0][0]:.5f}, {halves[1][0]:.5f} | {order} | {ph['phase']} |")
     run.check(f"replica {i}: second half of production against the first", halves[1][0], halves[0][0],
               math.hypot(halves[0][1], halves[1][1]), K, 2 * REL_SE_BOUND * eta)  # each half has ~sqrt(2) x the SE

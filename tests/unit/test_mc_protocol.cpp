@@ -4,6 +4,7 @@
 
 #include "anisodyn/config/builder.hpp"
 #include "anisodyn/mc/protocol.hpp"
+#include "scratch_dir.hpp"
 
 using namespace anisodyn;
 
@@ -28,34 +29,42 @@ McPhase compress(double eta, const std::string& method) {
   p.max_cycles = 40000;
   return p;
 }
+
+class McProtocolRun : public testing_support::ScratchDirTest {
+ protected:
+  McProtocolRun() : ScratchDirTest("mc-protocol") {}
+  /// Runs the protocol on `s`; the trajectory goes to a scratch file.
+  void run(State& s, const McProtocol& proto) {
+    McRunner runner(s, proto, true);
+    io::H5mdWriter out(file("mc.h5"), {"anisodyn", "", "test", nlohmann::json::object(), nlohmann::json::object(), s.species});
+    runner.run(out, 0, [] {});
+  }
+};
 }  // namespace
 
-TEST(McProtocol, QuickCompressionOfHardSpheresLandsOnTheTargetWithoutOverlaps) {
+TEST_F(McProtocolRun, QuickCompressionOfHardSpheresLandsOnTheTargetWithoutOverlaps) {
   State s = lattice(Species{"hs", Shape::sphere(1.0), 1.0, {}, {}}, 256, 0.20, false);
   McProtocol proto;
   proto.phases = {compress(0.40, "quick")};
-  McRunner runner(s, proto, true);
-  runner.run(0, [] {});
+  run(s, proto);
   EXPECT_NEAR(s.packing_fraction(), 0.40, 1e-12);
   EXPECT_FALSE(HardOverlap(s).first_overlap().has_value());
 }
 
-TEST(McProtocol, QuickCompressionOfRandomBoards) {
+TEST_F(McProtocolRun, QuickCompressionOfRandomBoards) {
   State s = lattice(Species{"board", Shape::cuboid(1.0, 3.4641, 12.0), 1.0, {}, {}}, 120, 0.01, true);
   McProtocol proto;
   proto.phases = {compress(0.12, "quick")};
-  McRunner runner(s, proto, true);
-  runner.run(0, [] {});
+  run(s, proto);
   EXPECT_NEAR(s.packing_fraction(), 0.12, 1e-12);
   EXPECT_FALSE(HardOverlap(s).first_overlap().has_value());
 }
 
-TEST(McProtocol, NptCompressionLandsExactlyOnTheTarget) {
+TEST_F(McProtocolRun, NptCompressionLandsExactlyOnTheTarget) {
   State s = lattice(Species{"hs", Shape::sphere(1.0), 1.0, {}, {}}, 216, 0.10, false);
   McProtocol proto;
   proto.phases = {compress(0.30, "npt")};
-  McRunner runner(s, proto, true);
-  runner.run(0, [] {});
+  run(s, proto);
   EXPECT_NEAR(s.packing_fraction(), 0.30, 1e-12);
   EXPECT_FALSE(HardOverlap(s).first_overlap().has_value());
 }

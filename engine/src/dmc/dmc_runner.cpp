@@ -250,7 +250,7 @@ Vec3 DmcRunner::switch_field(bool on, std::int64_t step) {
 
 double DmcRunner::advance() {
   const std::vector<double> dt_used = dt_;
-  engine_.cycle();
+  cycle_.step(state_);  // its Brownian time comes from the balance below
   const auto& c = engine_.last_cycle();
   const double dt_bd = balance_->advance(c, dt_);
   if (protocol_.balance == BalanceMode::PerCycle) engine_.set_time_steps(dt_);

@@ -30,6 +30,9 @@ std::string format_mean_error(const nlohmann::json& stats) {
   return buf;
 }
 
+/// MC has no physical time: its trajectories count time in cycles.
+constexpr double kTimePerCycle = 1.0;
+
 std::string phase_detail(const State& s, const McEngine& e) {
   char buf[96];
   std::snprintf(buf, sizeof buf, "eta=%.4f dlnV=%.3g", s.packing_fraction(), e.move_sizes().log_volume);
@@ -38,75 +41,81 @@ std::string phase_detail(const State& s, const McEngine& e) {
 }  // namespace
 
 McRunner::McRunner(State& state, const McProtocol& protocol, bool quiet)
-    : state_(state), protocol_(protocol), engine_(state, RngState{protocol.seed, protocol.replica, 0, 4}), quiet_(quiet) {
+    : state_(state),
+      protocol_(protocol),
+      engine_(state, RngState{protocol.seed, protocol.replica, 0, 4}),
+      quiet_(quiet),
+      loop_(state, *this, protocol.frames, protocol.observe_every) {
   engine_.set_field(protocol.field);
   tune_mark_ = sample_mark_ = engine_.counters();
   summary_["phases"] = nlohmann::json::array();
 }
 
-void McRunner::record(const std::string& name, const std::vector<double>& values, const std::string& definition) {
-  Series& s = observables_[name];
+void McRunner::record(io::H5mdWriter& out, const std::string& name, const std::vector<double>& values, const std::string& definition) {
+  out.append_observable(name, loop_.step(), loop_.time(), values);
+  if (described_.insert(name).second) {
+    out.set_observable_attribute(name, "definition", definition);
+    out.set_observable_attribute(name, "units", name == "box_edges" ? "length unit of the study" : "1");
+  }
+  PhaseSeries& s = phase_samples_[name];
   s.width = values.size();
-  s.definition = definition;
-  s.step.push_back(cursor_.total_cycles);
-  s.time.push_back(static_cast<double>(cursor_.total_cycles));
   s.value.insert(s.value.end(), values.begin(), values.end());
 }
 
-void McRunner::sample() {
+void McRunner::observe(io::H5mdWriter& out, std::int64_t, double) {
   const MoveCounters w = engine_.counters().since(sample_mark_);
   sample_mark_ = engine_.counters();
   const Vec3& L = state_.box.edges();
-  record("packing_fraction", {state_.packing_fraction()}, "packing fraction: total particle volume / box volume");
-  record("box_edges", {L.x(), L.y(), L.z()}, "box edge lengths Lx, Ly, Lz");
+  record(out, "packing_fraction", {state_.packing_fraction()}, "packing fraction: total particle volume / box volume");
+  record(out, "box_edges", {L.x(), L.y(), L.z()}, "box edge lengths Lx, Ly, Lz");
   const McPhase& phase = protocol_.phases[cursor_.phase];
   const bool npt = phase.type == McPhase::Type::Npt || (phase.type == McPhase::Type::Compress && !cursor_.squeezing);
   const double pressure = phase.type == McPhase::Type::Npt ? phase.pressure : cursor_.compress_pressure;
-  record("pressure", {npt ? pressure : std::numeric_limits<double>::quiet_NaN()}, "imposed reduced pressure βP (NaN at constant volume)");
+  record(out, "pressure", {npt ? pressure : std::numeric_limits<double>::quiet_NaN()}, "imposed reduced pressure βP (NaN at constant volume)");
   if (w.volume_tried > 0)
-    record("acceptance_volume", {MoveCounters::ratio(w.volume_accepted, w.volume_tried)}, "acceptance of volume moves since the previous sample");
+    record(out, "acceptance_volume", {MoveCounters::ratio(w.volume_accepted, w.volume_tried)}, "acceptance of volume moves since the previous sample");
   for (std::size_t s = 0; s < state_.species.size(); ++s) {
     const auto& sp = state_.species[s];
-    record("acceptance_" + sp.name,
+    record(out, "acceptance_" + sp.name,
            {MoveCounters::ratio(w.translate_accepted[s], w.translate_tried[s]), MoveCounters::ratio(w.rotate_accepted[s], w.rotate_tried[s])},
            "acceptance of translation and rotation trials since the previous sample");
     if (!sp.shape.is_anisotropic()) continue;
     const auto order = body_axis_order(state_, static_cast<int>(s));
-    record("order_" + sp.name, {order[0].order, order[1].order, order[2].order},
+    record(out, "order_" + sp.name, {order[0].order, order[1].order, order[2].order},
            "uniaxial order parameters U_T, U_W, U_L: largest eigenvalue of the Q tensor of each body axis");
   }
   if (protocol_.field.active())
-    record("field_energy", {engine_.field_energy() / static_cast<double>(state_.particles.size())}, "field energy per particle βU/N");
+    record(out, "field_energy", {engine_.field_energy() / static_cast<double>(state_.particles.size())}, "field energy per particle βU/N");
 }
 
-void McRunner::one_cycle(const McPhase& phase) {
-  engine_.cycle();
-  ++cursor_.total_cycles;
+double McRunner::advance() {
+  sweep_.step(state_);
   ++cursor_.cycle_in_phase;
-  state_.step = cursor_.total_cycles;
-  state_.time = static_cast<double>(cursor_.total_cycles);
-  if (phase.tune && cursor_.cycle_in_phase % protocol_.tune_every == 0) {
+  if (protocol_.phases[cursor_.phase].tune && cursor_.cycle_in_phase % protocol_.tune_every == 0) {
     engine_.tune(protocol_.target_acceptance, engine_.counters().since(tune_mark_));
     tune_mark_ = engine_.counters();
   }
-  if (cursor_.total_cycles % protocol_.sample_every == 0) sample();
-  if (protocol_.frame_every > 0 && cursor_.total_cycles % protocol_.frame_every == 0) frames_.push_back(state_);
-  if (overlaps_present_) return;  // a checkpoint must hold a valid configuration: wait for it
-  checkpoints_->tick(cursor_.total_cycles, "cycle " + std::to_string(cursor_.total_cycles));
+  return kTimePerCycle;
 }
 
-void McRunner::run_fixed_phase(const McPhase& phase) {
+void McRunner::one_cycle(io::H5mdWriter& out) {
+  loop_.step(out);
+  if (overlaps_present_) return;  // a checkpoint must hold a valid configuration: wait for it
+  checkpoints_->tick(loop_.step(), "cycle " + std::to_string(loop_.step()));
+}
+
+void McRunner::run_fixed_phase(io::H5mdWriter& out, const McPhase& phase) {
   if (phase.type == McPhase::Type::Npt) engine_.set_pressure(phase.pressure, phase.box_moves);
   else engine_.set_pressure(std::nullopt);
   Progress progress(std::string("mc ") + type_name(phase.type) + " " + phase.label, phase.cycles, quiet_);
   while (cursor_.cycle_in_phase < phase.cycles) {
-    one_cycle(phase);
+    one_cycle(out);
     progress.update(cursor_.cycle_in_phase, phase_detail(state_, engine_));
   }
   progress.finish(phase_detail(state_, engine_));
 }
 
-void McRunner::run_quick_compress(const McPhase& phase) {
+void McRunner::run_quick_compress(io::H5mdWriter& out, const McPhase& phase) {
   const double target_volume = state_.packing_fraction() * state_.box.volume() / phase.target_packing_fraction;
   const double reach = largest_pair_cutoff(state_.species);
   if ((state_.box.edges() * std::cbrt(target_volume / state_.box.volume())).minCoeff() < 2.0 * reach)
@@ -121,7 +130,7 @@ void McRunner::run_quick_compress(const McPhase& phase) {
     overlaps_present_ = true;
     std::int64_t sweeps = 0;
     while (engine_.overlap().first_overlap()) {
-      one_cycle(phase);
+      one_cycle(out);
       ++sweeps;
       if (cursor_.cycle_in_phase >= phase.max_cycles)
         throw RuntimeFailure("quick compression did not reach packing fraction " + std::to_string(phase.target_packing_fraction) +
@@ -132,7 +141,7 @@ void McRunner::run_quick_compress(const McPhase& phase) {
     // Removal leaves particles just touching; ordinary sweeps reopen the gaps before the next
     // shrink (without them each shrink creates more overlaps and the compression stalls). The
     // configuration is valid again, so these cycles also honour interrupts and checkpoints.
-    for (std::int64_t k = 0; k < phase.squeeze_sweeps; ++k) one_cycle(phase);
+    for (std::int64_t k = 0; k < phase.squeeze_sweeps; ++k) one_cycle(out);
     // Adapt the step: a few sweeps per shrink keeps the particles close to a relaxed packing.
     if (sweeps <= 3) cursor_.quick_step = std::min(0.05, 1.5 * cursor_.quick_step);
     else if (sweeps > 20) cursor_.quick_step = std::max(1e-4, 0.7 * cursor_.quick_step);
@@ -141,8 +150,8 @@ void McRunner::run_quick_compress(const McPhase& phase) {
   progress.finish(phase_detail(state_, engine_));
 }
 
-void McRunner::run_compress_phase(const McPhase& phase) {
-  if (phase.method == "quick") return run_quick_compress(phase);
+void McRunner::run_compress_phase(io::H5mdWriter& out, const McPhase& phase) {
+  if (phase.method == "quick") return run_quick_compress(out, phase);
   const double target = phase.target_packing_fraction;
   const double target_volume = state_.packing_fraction() * state_.box.volume() / target;
   Progress progress("mc compress to eta=" + std::to_string(target), phase.max_cycles, quiet_);
@@ -164,7 +173,7 @@ void McRunner::run_compress_phase(const McPhase& phase) {
       const double eta_before = state_.packing_fraction();
       const std::int64_t step_end = (cursor_.cycle_in_phase / phase.cycles_per_step + 1) * phase.cycles_per_step;
       while (cursor_.cycle_in_phase < step_end) {
-        one_cycle(phase);
+        one_cycle(out);
         progress.update(cursor_.cycle_in_phase, phase_detail(state_, engine_) + " betaP=" + std::to_string(cursor_.compress_pressure));
       }
       check_budget();
@@ -181,7 +190,7 @@ void McRunner::run_compress_phase(const McPhase& phase) {
     const double v = state_.box.volume();
     const double next = v < target_volume ? target_volume : std::max(target_volume, v * (1.0 - 1e-3));
     if (!engine_.try_rescale(next)) {
-      for (std::int64_t k = 0; k < phase.squeeze_sweeps; ++k) one_cycle(phase);
+      for (std::int64_t k = 0; k < phase.squeeze_sweeps; ++k) one_cycle(out);
       check_budget();
       progress.update(cursor_.cycle_in_phase, phase_detail(state_, engine_) + " squeezing");
     }
@@ -194,7 +203,7 @@ void McRunner::summarise_phase(const McPhase& phase, std::int64_t first_step) {
   js["type"] = type_name(phase.type);
   js["label"] = phase.label;
   js["first_cycle"] = first_step;
-  js["last_cycle"] = cursor_.total_cycles;
+  js["last_cycle"] = loop_.step();
   js["final_packing_fraction"] = state_.packing_fraction();
   js["final_box_edges"] = {state_.box.edges().x(), state_.box.edges().y(), state_.box.edges().z()};
   if (phase.type == McPhase::Type::Npt) js["pressure"] = phase.pressure;
@@ -203,11 +212,10 @@ void McRunner::summarise_phase(const McPhase& phase, std::int64_t first_step) {
   // Column k of an observable over the samples taken in this phase.
   auto column = [&](const std::string& name, std::size_t k) {
     std::vector<double> out;
-    auto it = observables_.find(name);
-    if (it == observables_.end()) return out;
-    const Series& s = it->second;
-    for (std::size_t r = 0; r < s.step.size(); ++r)
-      if (s.step[r] > first_step && s.step[r] <= cursor_.total_cycles) out.push_back(s.value[r * s.width + k]);
+    auto it = phase_samples_.find(name);
+    if (it == phase_samples_.end()) return out;
+    const PhaseSeries& s = it->second;
+    for (std::size_t r = k; r < s.value.size(); r += s.width) out.push_back(s.value[r]);
     return out;
   };
   auto stats = [](const std::vector<double>& x) {
@@ -264,23 +272,24 @@ void McRunner::summarise_phase(const McPhase& phase, std::int64_t first_step) {
   summary_["phases"].push_back(js);
 }
 
-void McRunner::run(std::int64_t checkpoint_every, const std::function<void()>& checkpoint) {
+void McRunner::run(io::H5mdWriter& out, std::int64_t checkpoint_every, const std::function<void()>& checkpoint) {
   run::CheckpointClock checkpoints(checkpoint_every, checkpoint);
   checkpoints_ = &checkpoints;
   for (; cursor_.phase < protocol_.phases.size(); ++cursor_.phase) {
     const McPhase& phase = protocol_.phases[cursor_.phase];
-    const std::int64_t first_step = cursor_.total_cycles - cursor_.cycle_in_phase;
+    const std::int64_t first_step = loop_.step() - cursor_.cycle_in_phase;
     if (cursor_.cycle_in_phase == 0) tune_mark_ = engine_.counters();
-    if (phase.type == McPhase::Type::Compress) run_compress_phase(phase);
-    else run_fixed_phase(phase);
+    if (phase.type == McPhase::Type::Compress) run_compress_phase(out, phase);
+    else run_fixed_phase(out, phase);
     summarise_phase(phase, first_step);
+    phase_samples_.clear();
     cursor_.cycle_in_phase = 0;
     cursor_.compress_pressure = 0.0;
     cursor_.squeezing = false;
     cursor_.quick_step = 0.0;
   }
-  if (frames_.empty() || frames_.back().step != state_.step) frames_.push_back(state_);
-  summary_["total_cycles"] = cursor_.total_cycles;
+  loop_.finish(out, false);  // the samples are snapshots every observe_every cycles: no remainder row
+  summary_["total_cycles"] = loop_.step();
   summary_["final_packing_fraction"] = state_.packing_fraction();
 }
 
@@ -309,7 +318,7 @@ MoveCounters counters_from_json(const nlohmann::json& j) {
 nlohmann::json McRunner::checkpoint_state() const {
   const RngState& r = engine_.rng_state();
   const MoveSizes& m = engine_.move_sizes();
-  return {{"cursor", {{"phase", cursor_.phase}, {"cycle_in_phase", cursor_.cycle_in_phase}, {"total_cycles", cursor_.total_cycles},
+  return {{"cursor", {{"phase", cursor_.phase}, {"cycle_in_phase", cursor_.cycle_in_phase},
                       {"compress_pressure", cursor_.compress_pressure}, {"squeezing", cursor_.squeezing},
                       {"quick_step", cursor_.quick_step}}},
           {"rng", {{"seed", r.seed}, {"stream", r.stream}, {"counter", r.counter}, {"used", r.used}}},
@@ -317,14 +326,14 @@ nlohmann::json McRunner::checkpoint_state() const {
           {"tune_mark", counters_to_json(tune_mark_)},
           {"sample_mark", counters_to_json(sample_mark_)},
           {"move_sizes", {{"translate", m.translate}, {"rotate", m.rotate}, {"log_volume", m.log_volume}}},
+          {"loop", loop_.checkpoint_state()},
           {"summary", summary_}};
 }
 
-void McRunner::restore(const nlohmann::json& js, std::map<std::string, Series> observables, std::vector<State> frames) {
+void McRunner::restore(const nlohmann::json& js) {
   const auto& c = js.at("cursor");
   cursor_.phase = c.at("phase").get<std::size_t>();
   cursor_.cycle_in_phase = c.at("cycle_in_phase").get<std::int64_t>();
-  cursor_.total_cycles = c.at("total_cycles").get<std::int64_t>();
   cursor_.compress_pressure = c.at("compress_pressure").get<double>();
   cursor_.squeezing = c.at("squeezing").get<bool>();
   cursor_.quick_step = c.at("quick_step").get<double>();
@@ -339,8 +348,21 @@ void McRunner::restore(const nlohmann::json& js, std::map<std::string, Series> o
   tune_mark_ = counters_from_json(js.at("tune_mark"));
   sample_mark_ = counters_from_json(js.at("sample_mark"));
   summary_ = js.at("summary");
-  observables_ = std::move(observables);
-  frames_ = std::move(frames);
+  loop_.restore(js.at("loop"));
+}
+
+void McRunner::restore_phase_samples(const io::H5mdReader& partial) {
+  const std::int64_t first_step = loop_.step() - cursor_.cycle_in_phase;
+  phase_samples_.clear();
+  for (const auto& name : partial.observable_names()) {
+    const auto series = partial.read_observable(name);
+    PhaseSeries& s = phase_samples_[name];
+    s.width = series.width;
+    for (std::size_t r = 0; r < series.rows(); ++r)
+      if (series.step[r] > first_step && series.step[r] <= loop_.step())
+        s.value.insert(s.value.end(), series.value.begin() + static_cast<std::ptrdiff_t>(r * s.width),
+                       series.value.begin() + static_cast<std::ptrdiff_t>((r + 1) * s.width));
+  }
 }
 
 }  // namespace anisodyn

@@ -1,5 +1,6 @@
 #include "anisodyn/mc/protocol_config.hpp"
 #include "anisodyn/run/field_config.hpp"
+#include "anisodyn/run/frame_rules.hpp"
 
 #include <initializer_list>
 #include <string>
@@ -70,8 +71,8 @@ McProtocol parse_mc_protocol(tool::ConfigNode& cfg) {
   p.target_acceptance = cfg.positive("target_acceptance", 0.35);
   if (p.target_acceptance >= 1.0) cfg.fail("target_acceptance", "expected an acceptance between 0 and 1");
   p.tune_every = cfg.positive_integer("tune_every", 100);
-  p.sample_every = cfg.positive_integer("sample_every", 10);
-  p.frame_every = cfg.non_negative_integer("frame_every", 0);
+  p.observe_every = cfg.positive_integer("observe_every", 10);
+  p.frames = run::parse_frame_rules(cfg, run::StepUnit::cycles(), run::FrameUse::Preparation);
   p.field = run::parse_field_config(cfg, run::FieldUse::Constant).orientational;
   auto phases = cfg.objects("phases");
   if (phases.empty()) cfg.fail("phases", "expected at least one phase (compress, npt or nvt)");

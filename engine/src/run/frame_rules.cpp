@@ -15,10 +15,13 @@ bool FrameRules::log_step_due(std::int64_t since_switch) const {
   return false;
 }
 
-FrameRules parse_frame_rules(tool::ConfigNode& cfg, const StepUnit& unit) {
+FrameRules parse_frame_rules(tool::ConfigNode& cfg, const StepUnit& unit, FrameUse use) {
   FrameRules r;
   auto f = cfg.optional_object("frames");
   if (!f) return r;
+  for (const char* key : {"every_time", "log_first_time", "log_per_decade", "after_switch"})
+    f->reject_unless(use == FrameUse::Production, key,
+                     "in a preparation run, which has no time and no field switches (use " + unit.every() + " or log_" + unit.plural + ")");
   r.every_steps = f->non_negative_integer(unit.every(), 0);
   r.every_time = f->non_negative("every_time", 0.0);
   if (f->has("log_per_decade") || f->has("log_first_time")) {

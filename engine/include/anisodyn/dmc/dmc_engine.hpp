@@ -108,6 +108,7 @@ class DmcEngine {
   nlohmann::json checkpoint() const;
   void restore(const nlohmann::json& j);
   const RngState& rng_state() const { return rng_.state(); }
+  const State& state() const { return state_; }
   const HardOverlap& overlap() const { return overlap_; }
 
  private:

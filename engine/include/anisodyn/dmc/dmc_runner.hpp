@@ -13,6 +13,7 @@
 #include "anisodyn/dmc/dmc_engine.hpp"
 #include "anisodyn/dmc/dmc_protocol.hpp"
 #include "anisodyn/dmc/time_balance.hpp"
+#include "anisodyn/integrate/integrator.hpp"
 #include "anisodyn/io/h5md.hpp"
 #include "anisodyn/run/production_runner.hpp"
 
@@ -65,6 +66,7 @@ class DmcRunner : public run::ProductionClient {
   std::string config_file_;
   bool quiet_;
   DmcEngine engine_;
+  CycleIntegrator<DmcEngine> cycle_{engine_};
   std::unique_ptr<TimeBalance> balance_;
   DmcCursor cursor_;
   run::ProductionRunner production_;

@@ -66,6 +66,7 @@ class McEngine {
   /// Cumulative counters since construction.
   const MoveCounters& counters() const { return counters_; }
   const RngState& rng_state() const { return rng_.state(); }
+  const State& state() const { return state_; }
   /// Total field energy βU of the configuration.
   double field_energy() const;
   const HardOverlap& overlap() const { return overlap_; }

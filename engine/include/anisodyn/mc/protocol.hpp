@@ -5,20 +5,29 @@
 //   npt      — constant βP, isotropic or per-axis box moves;
 //   nvt      — constant volume.
 // Any phase may tune move sizes towards the target acceptance (preparation only). Observables are
-// sampled every `sample_every` cycles; each phase ends with a summary (means with block-averaged
+// sampled every `observe_every` cycles; each phase ends with a summary (means with block-averaged
 // standard errors, the phase label from the Q tensors).
+//
+// The run is a client of the shared step loop (run/step_loop.hpp): a cycle is one step, its time
+// the cycle count (MC has no physical time), observables and frames stream into the H5MD output
+// as in every engine, and the loop's cursor is part of the checkpoint.
 #include <cstdint>
 #include <functional>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "anisodyn/integrate/integrator.hpp"
 #include "anisodyn/interactions/orientational_field.hpp"
+#include "anisodyn/io/h5md.hpp"
 #include "anisodyn/mc/mc_engine.hpp"
 #include "anisodyn/run/checkpoint_clock.hpp"
+#include "anisodyn/run/frame_rules.hpp"
+#include "anisodyn/run/step_loop.hpp"
 #include "anisodyn/system/state.hpp"
 
 namespace anisodyn {
@@ -51,66 +60,71 @@ struct McProtocol {
   std::uint64_t replica = 0;  // random stream of the seed (--replica K): independent replicas
   double target_acceptance = 0.35;
   std::int64_t tune_every = 100;
-  std::int64_t sample_every = 10;
-  std::int64_t frame_every = 0;  // 0: final frame only
+  std::int64_t observe_every = 10;
+  run::FrameRules frames;  // none: the final frame only
   OrientationalField field;
   std::vector<McPhase> phases;
 };
 
-/// Sampled time series, keyed by observable name; each row has `width` values.
-struct Series {
-  std::vector<std::int64_t> step;
-  std::vector<double> time;
+/// The samples of one observable in the current phase (for its summary); each row has `width` values.
+struct PhaseSeries {
   std::vector<double> value;
   std::size_t width = 1;
-  std::string definition;
 };
 
 /// Resumable position within the protocol (stored in checkpoints).
 struct McCursor {
   std::size_t phase = 0;
   std::int64_t cycle_in_phase = 0;  // compress: cycles spent so far in the phase
-  std::int64_t total_cycles = 0;
   double compress_pressure = 0.0;   // current βP of a compress phase (0 = not started)
   bool squeezing = false;           // compress: pressure ramp done, squeezing to the exact target
   double quick_step = 0.0;          // quick compress: current relative volume step (0 = not started)
 };
 
-class McRunner {
+class McRunner : public run::StepClient {
  public:
   McRunner(State& state, const McProtocol& protocol, bool quiet);
 
-  /// Runs from the cursor to the end. `checkpoint` is called every `checkpoint_every` cycles
-  /// (0 = never) and when an interrupt was requested (then Interrupted is thrown after it returns).
-  void run(std::int64_t checkpoint_every, const std::function<void()>& checkpoint);
+  /// Runs from the cursor to the end, writing observables and frames to `out`. `checkpoint` is
+  /// called every `checkpoint_every` cycles (0 = never) and when an interrupt was requested (then
+  /// Interrupted is thrown after it returns), only at cycles without overlaps.
+  void run(io::H5mdWriter& out, std::int64_t checkpoint_every, const std::function<void()>& checkpoint);
 
-  const std::map<std::string, Series>& observables() const { return observables_; }
-  const std::vector<State>& frames() const { return frames_; }
+  /// The cycle of the last completed output row: rows after it are dropped when resuming.
+  std::int64_t last_output_step() const { return loop_.step(); }
   const nlohmann::json& summary() const { return summary_; }
 
-  /// Engine state for checkpoints, and its inverse.
+  /// Engine state for checkpoints, and its inverse (also sets the state's step and time).
   nlohmann::json checkpoint_state() const;
-  void restore(const nlohmann::json& engine_state, std::map<std::string, Series> observables, std::vector<State> frames);
+  void restore(const nlohmann::json& engine_state);
+  /// Resuming: the current phase's samples, for its summary, from the run's partial output (rows
+  /// after the checkpoint's cycle, left by a crash, are not taken).
+  void restore_phase_samples(const io::H5mdReader& partial);
 
  private:
-  void run_fixed_phase(const McPhase& phase);
-  void run_compress_phase(const McPhase& phase);
-  void run_quick_compress(const McPhase& phase);
-  void one_cycle(const McPhase& phase);
-  void sample();
+  // run::StepClient
+  double advance() override;
+  void observe(io::H5mdWriter& out, std::int64_t step, double time) override;
+
+  void run_fixed_phase(io::H5mdWriter& out, const McPhase& phase);
+  void run_compress_phase(io::H5mdWriter& out, const McPhase& phase);
+  void run_quick_compress(io::H5mdWriter& out, const McPhase& phase);
+  void one_cycle(io::H5mdWriter& out);
   void summarise_phase(const McPhase& phase, std::int64_t first_step);
-  void record(const std::string& name, const std::vector<double>& values, const std::string& definition);
+  void record(io::H5mdWriter& out, const std::string& name, const std::vector<double>& values, const std::string& definition);
 
   State& state_;
   McProtocol protocol_;
   McEngine engine_;
+  CycleIntegrator<McEngine> sweep_{engine_};
   bool quiet_;
   McCursor cursor_;
+  run::StepLoop loop_;
   bool overlaps_present_ = false;  // quick compression: checkpoints wait until the overlaps are gone
   run::CheckpointClock* checkpoints_ = nullptr;  // during run()
   MoveCounters tune_mark_, sample_mark_;
-  std::map<std::string, Series> observables_;
-  std::vector<State> frames_;
+  std::map<std::string, PhaseSeries> phase_samples_;
+  std::set<std::string> described_;  // observables whose units and definition are written
   nlohmann::json summary_ = nlohmann::json::object();
 };
 

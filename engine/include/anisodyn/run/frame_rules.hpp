@@ -31,8 +31,13 @@ struct FrameRules {
   bool log_step_due(std::int64_t since_switch) const;
 };
 
-/// Parses the optional "frames" block (absent: frames at the start and the end only).
-FrameRules parse_frame_rules(tool::ConfigNode& cfg, const StepUnit& unit);
+/// What a tool's frames can follow. A production run has a time and field switches; an MC
+/// preparation run counts cycles only (its time is the cycle count, its field never switches).
+enum class FrameUse { Production, Preparation };
+
+/// Parses the optional "frames" block (absent: the end frame only, and the start in production).
+/// For Preparation the rules in time and after switches are input errors naming the key.
+FrameRules parse_frame_rules(tool::ConfigNode& cfg, const StepUnit& unit, FrameUse use = FrameUse::Production);
 
 /// The rules with the run's position in them (part of the checkpointed cursor).
 class FrameClock {

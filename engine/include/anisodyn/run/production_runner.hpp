@@ -4,10 +4,9 @@
 // line, written once. An engine plugs in as a ProductionClient: it advances its state by one step
 // and says what it observes; the runner decides when.
 //
-// Per step, in this order: the client advances the state; the runner counts the step and its time
-// (State::step, State::time); an observation row if the step is a multiple of observe_every; the
-// client's per-step records; a frame if a frame rule fires. A frame is always written at the start
-// and at the end of production, and a last observation row covers any steps after the previous one.
+// Each step is the shared StepLoop's (run/step_loop.hpp): advance, count, observe, per-step
+// records, frame. The runner adds the field schedule, a frame at the start, and at the end a last
+// observation row over any steps after the previous one and the final frame.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -18,26 +17,18 @@
 #include "anisodyn/run/checkpoint_clock.hpp"
 #include "anisodyn/run/frame_rules.hpp"
 #include "anisodyn/run/schedule.hpp"
+#include "anisodyn/run/step_loop.hpp"
 #include "anisodyn/run/step_unit.hpp"
 #include "anisodyn/system/state.hpp"
 
 namespace anisodyn::run {
 
-/// What an engine provides to the production runner.
-class ProductionClient {
+/// What an engine provides to the production runner: the step loop's client, plus the field switch.
+class ProductionClient : public StepClient {
  public:
-  virtual ~ProductionClient() = default;
-  /// Advances the state by one step (DMC: one cycle); returns the time the step covered.
-  virtual double advance() = 0;
-  /// Writes one row of observables, over the steps since the previous row, at (step, time).
-  virtual void observe(io::H5mdWriter& out, std::int64_t step, double time) = 0;
-  /// Per-step records after the step was counted (e.g. the pulled tracer's position).
-  virtual void after_step(io::H5mdWriter&, std::int64_t /*step*/, double /*time*/) {}
   /// Switches the field on or off at `step`; returns the field direction in force afterwards.
   virtual Vec3 switch_field(bool on, std::int64_t step) = 0;
   virtual bool field_on() const = 0;
-  /// Engine-specific per-particle data written with every frame (pointers valid until the next call).
-  virtual std::vector<io::ParticleElement> frame_elements() const { return {}; }
 };
 
 struct ProductionSettings {
@@ -57,8 +48,8 @@ class ProductionRunner {
   /// cadence over the whole run.
   void run(io::H5mdWriter& out, CheckpointClock& checkpoints, std::int64_t steps_before);
 
-  std::int64_t step() const { return step_; }
-  double time() const { return time_; }
+  std::int64_t step() const { return loop_.step(); }
+  double time() const { return loop_.time(); }
   /// The field switches so far: [{step unit: …, "time", "field": "on" | "off"}, …].
   const nlohmann::json& switches() const { return switches_; }
 
@@ -69,20 +60,13 @@ class ProductionRunner {
  private:
   void start_segment(io::H5mdWriter& out);
   void switch_field(io::H5mdWriter& out, bool on);
-  void one_step(io::H5mdWriter& out);
-  void observe(io::H5mdWriter& out);
-  void write_frame(io::H5mdWriter& out);
 
-  State& state_;
   ProductionClient& client_;
-  ProductionSettings settings_;
+  std::string label_;
+  StepUnit unit_;
   bool quiet_;
   ScheduleClock schedule_;
-  FrameClock frames_;
-  std::int64_t step_ = 0;
-  double time_ = 0.0;
-  std::int64_t last_switch_step_ = 0;
-  std::int64_t steps_since_observation_ = 0;
+  StepLoop loop_;
   nlohmann::json switches_ = nlohmann::json::array();
 };
 
