@@ -22,8 +22,7 @@ namespace {
 
 /// 512 particles on a simple cubic lattice of spacing 1.05σ, each displaced by up to ±0.08σ per
 /// axis: most neighbours within the WCA range, none closer than 0.89σ.
-Particles jittered_lattice(Rng& rng, Box& box) {
-  const int m = 8;
+Particles jittered_lattice(Rng& rng, Box& box, int m = 8) {
   const double a = 1.05;
   box = Box(Vec3::Constant(m * a));
   Particles p;
@@ -39,6 +38,19 @@ Particles jittered_lattice(Rng& rng, Box& box) {
 }
 
 VerletList list_for(const Wca& wca, double skin) { return VerletList({wca.cutoff()}, 1, skin); }
+
+/// A jittered WCA lattice of cells³ particles with its Verlet list built (skin 0.3).
+struct WcaSystem {
+  Rng rng;
+  Box box;
+  Particles p;
+  Wca wca;
+  VerletList list;
+  WcaSystem(std::uint64_t seed, std::uint64_t stream, double sigma, int cells = 8)
+      : rng(seed, stream), p(jittered_lattice(rng, box, cells)), wca{sigma, 1.0}, list(list_for(wca, 0.3)) {
+    list.build(box, p);
+  }
+};
 
 double energy_of(const Box& box, const Particles& p, const Wca& wca) {
   VerletList list = list_for(wca, 0.3);
@@ -75,12 +87,8 @@ void expect_matches(const std::vector<Vec3>& f, const Reference& ref) {
 }  // namespace
 
 TEST(PairForces, OwnerLoopEqualsTheAllPairsSum) {
-  Rng rng(3, 1);
-  Box box;
-  const Particles p = jittered_lattice(rng, box);
-  const Wca wca{1.0, 1.0};
-  VerletList list = list_for(wca, 0.3);
-  ASSERT_TRUE(list.update(box, p));
+  WcaSystem sys(3, 1, 1.0);
+  const auto& [rng, box, p, wca, list] = sys;
   std::vector<Vec3> f;
   const auto sums = accumulate_pair_forces(box, p, list, wca, f);
   const Reference ref = brute_force(box, p, wca);
@@ -92,12 +100,8 @@ TEST(PairForces, OwnerLoopEqualsTheAllPairsSum) {
 }
 
 TEST(PairForces, ForcesAndVirialAreDerivativesOfTheEnergy) {
-  Rng rng(5, 2);
-  Box box;
-  Particles p = jittered_lattice(rng, box);
-  const Wca wca{1.3, 1.0};
-  VerletList list = list_for(wca, 0.3);
-  list.build(box, p);
+  WcaSystem sys(5, 2, 1.3);
+  auto& [rng, box, p, wca, list] = sys;
   std::vector<Vec3> f;
   const auto sums = accumulate_pair_forces(box, p, list, wca, f);
   // Forces: F = −∂E/∂r, central differences on 30 random coordinates.
@@ -126,12 +130,8 @@ TEST(PairForces, ForcesAndVirialAreDerivativesOfTheEnergy) {
 }
 
 TEST(PairForces, NewtonsThirdLawAndThreadCountIndependence) {
-  Rng rng(7, 3);
-  Box box;
-  const Particles p = jittered_lattice(rng, box);
-  const Wca wca{1.0, 1.0};
-  VerletList list = list_for(wca, 0.3);
-  list.build(box, p);
+  WcaSystem sys(7, 3, 1.0);
+  const auto& [rng, box, p, wca, list] = sys;
   auto run = [&](int threads) {
 #ifdef _OPENMP
     omp_set_num_threads(threads);
@@ -154,14 +154,25 @@ TEST(PairForces, NewtonsThirdLawAndThreadCountIndependence) {
   EXPECT_LT(total.norm(), 1e-12 * magnitude);
 }
 
+TEST(PairForces, ReusedScratchGivesTheSameSumsAsFreshStorage) {
+  // The scratch holds the partial sums of an earlier, larger system and forces of another size:
+  // nothing of them may leak into the next call.
+  WcaSystem big(13, 5, 1.0), small(17, 6, 1.2, 6);
+  std::vector<Vec3> f_fresh, f_reused, t_reused;
+  PairScratch<Wca::kParts> scratch;
+  accumulate_pair_forces(big.box, big.p, big.list, big.wca, f_reused, &t_reused, &scratch);
+  const auto fresh = accumulate_pair_forces(small.box, small.p, small.list, small.wca, f_fresh);
+  const auto reused = accumulate_pair_forces(small.box, small.p, small.list, small.wca, f_reused, &t_reused, &scratch);
+  EXPECT_EQ(f_fresh, f_reused);
+  EXPECT_EQ(fresh.energy, reused.energy);
+  EXPECT_EQ(fresh.virial[0], reused.virial[0]);
+  EXPECT_EQ(t_reused.size(), small.p.size());
+}
+
 TEST(PairForces, ListsAreRebuiltWhenAParticleMovedMoreThanHalfTheSkin) {
-  Rng rng(11, 4);
-  Box box;
-  Particles p = jittered_lattice(rng, box);
-  const Wca wca{1.0, 1.0};
+  WcaSystem sys(11, 4, 1.0);
+  auto& [rng, box, p, wca, list] = sys;
   const double skin = 0.3;
-  VerletList list = list_for(wca, skin);
-  ASSERT_TRUE(list.update(box, p));
   // Everyone moves by less than skin/2: the old list still holds every interacting pair.
   for (std::size_t i = 0; i < p.size(); ++i) {
     Vec3 r = p.position(i) + Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)).normalized() * 0.49 * skin * 0.999;

@@ -111,4 +111,14 @@ TEST_F(ShapeStorage, SpeciesShapesAreStoredAsJsonAndOldFilesStillRead) {
   H5Fclose(f);
   const State old = io::H5mdReader(file("old.h5")).read_frame(-1);
   for (std::size_t k = 0; k < 4; ++k) EXPECT_TRUE(same(old.species[k].shape, st.species[k].shape)) << k;
+
+  // With shape_spec, the fixed columns are not needed: another writer may leave them out.
+  std::filesystem::copy_file(file("new.h5"), file("spec_only.h5"));
+  const hid_t g = H5Fopen(file("spec_only.h5").c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(g, 0);
+  for (const char* column : {"edges", "diameter", "length"})
+    EXPECT_GE(H5Ldelete(g, (std::string("/parameters/species/") + column).c_str(), H5P_DEFAULT), 0) << column;
+  H5Fclose(g);
+  const State spec_only = io::H5mdReader(file("spec_only.h5")).read_frame(-1);
+  for (std::size_t k = 0; k < 4; ++k) EXPECT_TRUE(same(spec_only.species[k].shape, st.species[k].shape)) << k;
 }

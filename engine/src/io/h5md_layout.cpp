@@ -72,24 +72,29 @@ SpeciesTable read_species_table(const FileReader& m) {
   };
   if (shapes.size() != ns)
     m.bad(base + "/shape", "expected " + std::to_string(ns) + " entries, got " + std::to_string(shapes.size()));
+  // The shapes: from their JSON specs, or, in files written before shape_spec, from the kind
+  // name and the fixed columns (which the writer still adds for other readers).
   std::vector<Shape> from_specs;
-  if (m.exists(base + "/shape_spec")) from_specs = read_shape_specs(m, base + "/shape_spec", ns);
-  const auto edges = column("edges", 3), diameter = column("diameter", 1), length = column("length", 1),
-             mass = column("mass", 1), dt = column("D_trans", 3), dr = column("D_rot", 3);
+  if (m.exists(base + "/shape_spec")) {
+    from_specs = read_shape_specs(m, base + "/shape_spec", ns);
+  } else {
+    const auto edges = column("edges", 3), diameter = column("diameter", 1), length = column("length", 1);
+    for (std::size_t i = 0; i < ns; ++i) {
+      Shape& shape = from_specs.emplace_back();
+      bool ok = false;
+      shape.kind = shape_kind_from_name(shapes[i], ok);
+      if (!ok) m.bad(base + "/shape", "unknown shape '" + shapes[i] + "' for species " + std::to_string(i));
+      shape.edges = Vec3(edges[3 * i], edges[3 * i + 1], edges[3 * i + 2]);
+      shape.diameter = diameter[i];
+      shape.length = length[i];
+    }
+  }
+  const auto mass = column("mass", 1), dt = column("D_trans", 3), dr = column("D_rot", 3);
   SpeciesTable table(ns);
   for (std::size_t i = 0; i < ns; ++i) {
     Species& s = table[i];
     s.name = names[i];
-    if (!from_specs.empty()) {
-      s.shape = from_specs[i];
-    } else {  // files written before shape_spec: the kind name and the fixed columns
-      bool ok = false;
-      s.shape.kind = shape_kind_from_name(shapes[i], ok);
-      if (!ok) m.bad(base + "/shape", "unknown shape '" + shapes[i] + "' for species " + std::to_string(i));
-      s.shape.edges = Vec3(edges[3 * i], edges[3 * i + 1], edges[3 * i + 2]);
-      s.shape.diameter = diameter[i];
-      s.shape.length = length[i];
-    }
+    s.shape = from_specs[i];
     s.mass = mass[i];
     s.D_trans = Vec3(dt[3 * i], dt[3 * i + 1], dt[3 * i + 2]);
     s.D_rot = Vec3(dr[3 * i], dr[3 * i + 1], dr[3 * i + 2]);

@@ -43,17 +43,31 @@ struct PairSums {
   PairSums() { virial.fill(Mat3::Zero()); }
 };
 
+/// The per-particle energy and virial halves that the sums are reduced from, in index order. A
+/// time-stepping engine keeps one between steps so that the loop does not allocate every step.
+template <int Parts>
+struct PairScratch {
+  std::vector<double> energy;
+  std::vector<std::array<Mat3, Parts>> virial;
+};
+
 /// Sets force[i] (and torque[i], if torque is given) to the sum of the pair terms of particle i
-/// over its partners in `list`, which must be up to date; returns energy and virial.
+/// over its partners in `list`, which must be up to date; returns energy and virial. `scratch`
+/// (optional) is reused storage for the per-particle partial sums.
 template <class Eval>
 PairSums<Eval::kParts> accumulate_pair_forces(const Box& box, const Particles& p, const VerletList& list, const Eval& eval,
-                                              std::vector<Vec3>& force, std::vector<Vec3>* torque = nullptr) {
+                                              std::vector<Vec3>& force, std::vector<Vec3>* torque = nullptr,
+                                              PairScratch<Eval::kParts>* scratch = nullptr) {
   constexpr int kParts = Eval::kParts;
   const std::size_t n = p.size();
-  force.assign(n, Vec3::Zero());
-  if (torque) torque->assign(n, Vec3::Zero());
-  std::vector<double> energy(n, 0.0);
-  std::vector<std::array<Mat3, kParts>> virial(n);
+  force.resize(n);
+  if (torque) torque->resize(n);
+  PairScratch<kParts> local;
+  PairScratch<kParts>& partial = scratch ? *scratch : local;
+  partial.energy.resize(n);  // every entry is overwritten below
+  partial.virial.resize(n);
+  std::vector<double>& energy = partial.energy;
+  std::vector<std::array<Mat3, kParts>>& virial = partial.virial;
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3 ri = p.position(i);
