@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "anisodyn/core/rng.hpp"
+#include "anisodyn/interactions/pair_force_field.hpp"
 #include "anisodyn/interactions/wca.hpp"
 #include "anisodyn/neighbors/verlet_list.hpp"
 
@@ -191,4 +192,31 @@ TEST(PairForces, ListsAreRebuiltWhenAParticleMovedMoreThanHalfTheSkin) {
   p.set_position(17, r);
   EXPECT_TRUE(list.update(box, p));
   EXPECT_EQ(list.builds(), 2);
+}
+
+TEST(PairForces, AsAForceFieldItAddsTheSameTermsAndKeepsItsListUpToDate) {
+  WcaSystem sys(19, 7, 1.0);
+  State s;
+  s.box = sys.box;
+  s.particles = sys.p;
+  PairForceField<Wca> field(sys.wca, {sys.wca.cutoff()}, 1, 0.3);
+  BodyForces out;
+  out.reset(s.particles.size());
+  out.force[3] = Vec3(1, 2, 3);  // a term of another field, kept
+  field(s, out);
+  std::vector<Vec3> f;
+  const auto sums = accumulate_pair_forces(sys.box, sys.p, sys.list, sys.wca, f);
+  for (std::size_t i = 0; i < f.size(); ++i) EXPECT_EQ(out.force[i], f[i] + (i == 3 ? Vec3(1, 2, 3) : Vec3::Zero())) << i;
+  EXPECT_EQ(out.energy, sums.energy);
+  EXPECT_EQ(out.virial, sums.virial[0]);
+  EXPECT_EQ(field.list().builds(), 1);
+  // A particle moved beyond half the skin: the next call rebuilds and matches the all-pairs sum.
+  Vec3 r = s.particles.position(5) + Vec3(0.2, 0.0, 0.0);
+  Int3 image(0, 0, 0);
+  s.box.wrap(r, image);
+  s.particles.set_position(5, r);
+  out.reset(s.particles.size());
+  field(s, out);
+  EXPECT_EQ(field.list().builds(), 2);
+  expect_matches(out.force, brute_force(s.box, s.particles, sys.wca));
 }

@@ -100,4 +100,17 @@ inline MeanError block_average(std::vector<double> x, std::size_t min_blocks = 1
   return out;
 }
 
+/// Mean and standard error of independent samples (one per particle, say): error = sample
+/// standard deviation / √n; no correlation analysis.
+inline MeanError mean_of_independent(const std::vector<double>& x) {
+  MeanError m;
+  m.samples = x.size();
+  m.mean = statistics_detail::mean_of(x);
+  if (x.size() < 2) return m;
+  double q = 0.0;
+  for (double v : x) q += (v - m.mean) * (v - m.mean);
+  m.error = std::sqrt(q / static_cast<double>(x.size() - 1) / static_cast<double>(x.size()));
+  return m;
+}
+
 }  // namespace anisodyn

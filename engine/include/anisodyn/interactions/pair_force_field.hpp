@@ -1,0 +1,49 @@
+#pragma once
+// A pair evaluator (interactions/pair_forces.hpp) as the force field an integrator calls
+// (integrate/body_forces.hpp): the Verlet list is kept up to date between calls, the per-particle
+// storage is reused, and the forces, torques, energy and virial (summed over the parts) are added
+// into the BodyForces. An evaluator that needs per-step data of the state (the rods' axes) has
+// `void prepare(const State&)`, called before every evaluation.
+//
+// Integrators take a ForceField by value: pass std::ref(field) so that the list survives.
+#include <utility>
+#include <vector>
+
+#include "anisodyn/integrate/body_forces.hpp"
+#include "anisodyn/interactions/pair_forces.hpp"
+#include "anisodyn/neighbors/verlet_list.hpp"
+#include "anisodyn/system/state.hpp"
+
+namespace anisodyn {
+
+template <class Eval>
+class PairForceField {
+ public:
+  /// cutoffs[a·nspecies + b]: the pair cut-off of species a and b; skin > 0 (VerletList).
+  PairForceField(Eval eval, std::vector<double> cutoffs, int nspecies, double skin)
+      : eval_(std::move(eval)), list_(std::move(cutoffs), nspecies, skin) {}
+
+  void operator()(const State& s, BodyForces& out) {
+    if constexpr (requires { eval_.prepare(s); }) eval_.prepare(s);
+    list_.update(s.box, s.particles);
+    const auto sums = accumulate_pair_forces(s.box, s.particles, list_, eval_, force_, &torque_, &scratch_);
+    for (std::size_t i = 0; i < force_.size(); ++i) {
+      out.force[i] += force_[i];
+      out.torque[i] += torque_[i];
+    }
+    out.energy += sums.energy;
+    for (const Mat3& w : sums.virial) out.virial += w;
+  }
+
+  const Eval& evaluator() const { return eval_; }
+  Eval& evaluator() { return eval_; }
+  const VerletList& list() const { return list_; }
+
+ private:
+  Eval eval_;
+  VerletList list_;
+  std::vector<Vec3> force_, torque_;
+  PairScratch<Eval::kParts> scratch_;
+};
+
+}  // namespace anisodyn
