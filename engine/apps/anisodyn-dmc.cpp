@@ -94,7 +94,7 @@ int main(int argc, char** argv) {
       throw InputError(input, "/particles/all", e.what());
     }
     nlohmann::json provenance = tool::make_provenance(info.name, opt.argv, opt.inputs);
-    if (!protocol.diffusion_origins.empty()) provenance["diffusion_sources"] = protocol.diffusion_origins;
+    if (!protocol.diffusion.origins.empty()) provenance["diffusion_sources"] = protocol.diffusion.origins;
     const io::H5mdHeader header{"anisodyn", "", "anisodyn user", parameters, provenance, state.species};
     if (files.resuming()) {
       runner->restore(files.engine_state().at("runner"));

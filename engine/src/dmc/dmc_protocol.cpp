@@ -111,17 +111,7 @@ DmcProtocol parse_dmc_protocol(tool::ConfigNode& cfg) {
   p.frames = run::parse_frame_rules(cfg, run::StepUnit::cycles());
   p.observe_every = cfg.positive_integer("observe_every", 1);
 
-  if (auto sp = cfg.optional_object("species")) {
-    for (const auto& [name, value] : sp->raw().items()) {
-      if (!name.empty() && name[0] == '_') continue;
-      auto node = sp->object(name);
-      const DiffusionSpec d = parse_diffusion(node);
-      p.diffusion[name] = {d.D_trans, d.D_rot};
-      if (d.shape) p.diffusion_shape.emplace(name, *d.shape);
-      if (!d.origin.is_null()) p.diffusion_origins[name] = d.origin;
-      if (node.has("D_rot") && !node.has("diffusion_from")) p.rotational_diffusion_keys[name] = node.child_path("D_rot");
-    }
-  }
+  p.diffusion = io::DiffusionOverrides::parse(cfg);
   return p;
 }
 
@@ -143,7 +133,7 @@ void check_protocol_species(const DmcProtocol& p, const State& state, const std:
   if (p.field.dipoles)
     for (std::size_t k = 0; k < p.field.dipoles->species.size(); ++k)
       require(p.field.dipoles->species[k], "field.dipoles.species[" + std::to_string(k) + "]");
-  for (const auto& [name, d] : p.diffusion) require(name, "species." + name);
+  p.diffusion.check(state, file);
   // Keys that only act on some inputs.
   auto has_effect_nowhere = [&](const std::string& path, const std::string& why) {
     throw InputError(file, path, "no '" + path.substr(path.rfind('.') + 1) + "': it has no effect " + why);
@@ -160,15 +150,6 @@ void check_protocol_species(const DmcProtocol& p, const State& state, const std:
     has_effect_nowhere(p.rotation_move_key, "on an input without anisotropic particles (spheres only translate)");
   if (!p.preliminary_key.empty() && populated < 2 && !p.tracer)
     has_effect_nowhere(p.preliminary_key, "on an input with a single species and no pulled tracer (there is nothing to balance)");
-  for (const auto& [name, path] : p.rotational_diffusion_keys) {
-    const int s = index(name);
-    if (s >= 0 && !state.species[static_cast<std::size_t>(s)].shape.is_anisotropic())
-      has_effect_nowhere(path, "on the spheres of species '" + name + "' (they do not rotate)");
-  }
-  for (const auto& [name, shape] : p.diffusion_shape)
-    if (!same_shape(shape, state.species[static_cast<std::size_t>(index(name))].shape))
-      throw InputError(file, "species." + name + ".diffusion_from",
-                       "expected a species file entry with the same shape as the input's species '" + name + "'");
   if (p.tracer) {
     require(p.tracer->species, "tracer.species");
     const int s = index(p.tracer->species);

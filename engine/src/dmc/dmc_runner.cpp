@@ -63,11 +63,7 @@ void DmcRunner::configure_species() {
   const auto counts = species_counts(state_);
   summary_["warnings"] = nlohmann::json::array();
 
-  for (const auto& [name, d] : protocol_.diffusion) {
-    Species& sp = state_.species[static_cast<std::size_t>(species_index(name))];
-    if (d.first) sp.D_trans = *d.first;
-    if (d.second) sp.D_rot = *d.second;
-  }
+  protocol_.diffusion.apply(state_.species);
   for (std::size_t s = 0; s < ns; ++s) {
     const Species& sp = state_.species[s];
     if (counts[s] == 0) continue;

@@ -10,6 +10,7 @@
 
 #include "anisodyn/dmc/dmc_engine.hpp"
 #include "anisodyn/dmc/time_balance.hpp"
+#include "anisodyn/io/diffusion_overrides.hpp"
 #include "anisodyn/run/field_config.hpp"
 #include "anisodyn/run/frame_rules.hpp"
 #include "anisodyn/run/schedule.hpp"
@@ -42,15 +43,11 @@ struct DmcProtocol {
   std::optional<TracerSettings> tracer;
   run::FrameRules frames;
   std::int64_t observe_every = 1;
-  /// Diffusion coefficients replacing those of the input's species table.
-  std::map<std::string, std::pair<std::optional<Vec3>, std::optional<Vec3>>> diffusion;
-  std::map<std::string, Shape> diffusion_shape;  // shapes of entries taken from species files (checked against the input)
-  nlohmann::json diffusion_origins = nlohmann::json::object();  // species name → where its override came from
+  /// Diffusion coefficients replacing those of the input's species table ("species").
+  io::DiffusionOverrides diffusion;
   // Keys whose effect depends on the input's species (checked by check_protocol_species): the path
-  // of the first preliminary-run key given, of the first rotation-move key given, and of each
-  // species' rotational diffusion given.
+  // of the first preliminary-run key given and of the first rotation-move key given.
   std::string preliminary_key, rotation_move_key;
-  std::map<std::string, std::string> rotational_diffusion_keys;
 };
 
 /// Parses the configuration. Names of species are checked later against the input state
