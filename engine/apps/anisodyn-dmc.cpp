@@ -2,15 +2,9 @@
 // state to an H5MD trajectory. Frames and per-cycle observables stream into <output>.partial;
 // checkpoints go to <output>.checkpoint.h5, and running the same command again resumes from it
 // (run/run_files.hpp).
-#include <cstdio>
-#include <iostream>
-
-#include "anisodyn/core/error.hpp"
 #include "anisodyn/dmc/dmc_runner.hpp"
-#include "anisodyn/io/h5md.hpp"
-#include "anisodyn/run/run_files.hpp"
+#include "anisodyn/run/engine_main.hpp"
 #include "anisodyn/tool/command_line.hpp"
-#include "anisodyn/tool/provenance.hpp"
 
 using namespace anisodyn;
 
@@ -69,38 +63,6 @@ int main(int argc, char** argv) {
   const tool::ToolInfo info{"anisodyn-dmc", "Dynamic Monte Carlo of hard particles: Brownian dynamics by Metropolis moves",
                             "See docs/dmc.md.", description()};
   return tool::run_tool(argc, argv, info, [&](tool::CommonOptions& opt) {
-    const std::string& input = tool::require_one_input_and_output(opt);
-
-    tool::ConfigNode cfg(opt.config, opt.config_name());
-    DmcProtocol protocol = parse_dmc_protocol(cfg);
-    cfg.finish();
-    if (opt.seed) protocol.seed = *opt.seed;
-    if (opt.replica) protocol.replica = *opt.replica;
-    nlohmann::json parameters = opt.config;
-    parameters["seed"] = protocol.seed;
-    parameters["replica"] = protocol.replica;
-
-    run::RunFiles files(opt.output, parameters);
-    State state = files.starting_state(input);
-    state.step = 0;
-    state.time = 0.0;
-    require_minimum_image(state, input);
-    std::unique_ptr<DmcRunner> runner;
-    try {
-      runner = std::make_unique<DmcRunner>(state, protocol, opt.config_name(), opt.quiet);
-    } catch (const InputError& e) {
-      // Errors without a file of their own concern the input configuration.
-      if (std::string(e.what()).rfind(opt.config_name(), 0) == 0) throw;
-      throw InputError(input, "/particles/all", e.what());
-    }
-    nlohmann::json provenance = tool::make_provenance(info.name, opt.argv, opt.inputs);
-    if (!protocol.diffusion.origins.empty()) provenance["diffusion_sources"] = protocol.diffusion.origins;
-    const io::H5mdHeader header{"anisodyn", "", "anisodyn user", parameters, provenance, state.species};
-    if (files.resuming()) {
-      runner->restore(files.engine_state().at("runner"));
-      if (!opt.quiet) std::fprintf(stderr, "anisodyn-dmc: resuming from %s\n", files.checkpoint_path().c_str());
-    }
-    files.run_to_completion(header, state, *runner, opt.checkpoint_every.value_or(0));
-    std::cout << runner->summary().dump(2) << std::endl;
+    run::run_production_engine<DmcRunner, DmcProtocol>(opt, info, &parse_dmc_protocol);
   });
 }

@@ -13,7 +13,6 @@ observable). `--replica` must give a different trajectory. MDAnalysis must read 
 """
 import json
 import os
-import signal
 import subprocess
 import sys
 import time
@@ -21,7 +20,10 @@ import time
 import h5py
 import numpy as np
 
-bin_dir, tmp = sys.argv[1], sys.argv[2]
+bin_dir, tmp, source = sys.argv[1], sys.argv[2], sys.argv[3]
+sys.path.insert(0, os.path.join(source, "tests", "support"))
+from resume_checks import check_resumes  # noqa: E402
+
 os.makedirs(tmp, exist_ok=True)
 os.chdir(tmp)
 for f in os.listdir("."):
@@ -63,26 +65,6 @@ systems = {
 }
 
 
-def compare(a, b):
-    with h5py.File(a) as fa, h5py.File(b) as fb:
-        elements = sorted(fa["particles/all"].keys())
-        assert elements == sorted(fb["particles/all"].keys()), (elements, sorted(fb["particles/all"].keys()))
-        for e in elements:
-            for part in (["edges/value"] if e == "box" else ["value", "step", "time"]):
-                key = f"particles/all/{e}/{part}"
-                assert np.array_equal(fa[key][...], fb[key][...]), f"{key} differs between {a} and {b}"
-        count = 0
-        for group in ("observables", "anisodyn/observables"):
-            names = set(fa[group].keys()) if group in fa else set()
-            assert names == (set(fb[group].keys()) if group in fb else set()), group
-            for n in names:
-                for part in ("step", "time", "value"):
-                    assert np.array_equal(fa[f"{group}/{n}/{part}"][...], fb[f"{group}/{n}/{part}"][...], equal_nan=True), \
-                        f"{group}/{n}/{part} differs between {a} and {b}"
-            count += len(names)
-        return len(elements), count
-
-
 for name, (config, dmc) in systems.items():
     json.dump(config, open(f"{name}_config.json", "w"))
     json.dump(dmc, open(f"{name}_dmc.json", "w"))
@@ -107,37 +89,9 @@ for name, (config, dmc) in systems.items():
         print(f"[{name}] {frames} frames, times {t[0]:.3g} .. {t[-1]:.3g}; field states {sw[:, 0].tolist()}")
         assert f["particles/all/rotation_vector/value"].shape[2] == 9
 
-    def interrupted(out, sig, delay):
-        p = subprocess.Popen([os.path.join(bin_dir, a) if i == 0 else a for i, a in enumerate(args(out))],
-                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-        time.sleep(delay)
-        p.send_signal(sig)
-        _, err = p.communicate()
-        return p.returncode, err
-
-    delay = max(0.05, min(1.0, duration / 3))
-    code, err = interrupted(f"{name}_sigint.h5", signal.SIGINT, delay)
-    assert code == 130, f"SIGINT: exit code {code}, expected 130 ({err})"
-    assert os.path.exists(f"{name}_sigint.h5.checkpoint.h5") and not os.path.exists(f"{name}_sigint.h5")
-    r = run(args(f"{name}_sigint.h5"))
-    assert r.returncode == 0, r.stderr
-    assert not os.path.exists(f"{name}_sigint.h5.checkpoint.h5")
-    ne, no = compare(f"{name}_straight.h5", f"{name}_sigint.h5")
-    print(f"[{name}] SIGINT after {delay:.2f} s -> exit 130, resumed: identical ({ne} particle elements, {no} observables)")
-
-    p = subprocess.Popen([os.path.join(bin_dir, a) if i == 0 else a for i, a in enumerate(args(f"{name}_killed.h5"))],
-                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    deadline = time.time() + 60
-    while not os.path.exists(f"{name}_killed.h5.checkpoint.h5") and time.time() < deadline and p.poll() is None:
-        time.sleep(0.005)
-    time.sleep(delay / 2)
-    p.kill()
-    p.wait()
-    assert os.path.exists(f"{name}_killed.h5.checkpoint.h5"), "no periodic checkpoint before SIGKILL"
-    r = run(args(f"{name}_killed.h5"))
-    assert r.returncode == 0, r.stderr
-    compare(f"{name}_straight.h5", f"{name}_killed.h5")
-    print(f"[{name}] SIGKILL after a periodic checkpoint, resumed: identical")
+    full = lambda out: [os.path.join(bin_dir, a) if i == 0 else a for i, a in enumerate(args(out))]
+    print(f"[{name}] resume checks:")
+    check_resumes(full, name, f"{name}_straight.h5", duration, lambda cmd: subprocess.run(cmd, capture_output=True, text=True))
 
     r = run(args(f"{name}_replica.h5", ["--replica", "1"]))
     assert r.returncode == 0, r.stderr

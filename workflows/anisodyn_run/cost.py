@@ -51,9 +51,19 @@ def dmc_cycles(params, rule):
     return total
 
 
+def time_steps(params, rule):
+    """Steps of a time-stepping engine (BD, DPD, LB): `steps`, or `time` / `time_step` rounded up."""
+    if "steps" in params:
+        return params["steps"]
+    if "time" in params and params.get("time_step"):
+        return math.ceil(params["time"] / params["time_step"])
+    return 0
+
+
 # name -> (function(params, rule), the keys the rule object must give)
 RULES = {"mc_phases": (mc_phases, ("default_max_cycles",)),
-         "dmc_cycles": (dmc_cycles, ("cycles_per_time_step", "default_preliminary_cycles"))}
+         "dmc_cycles": (dmc_cycles, ("cycles_per_time_step", "default_preliminary_cycles")),
+         "time_steps": (time_steps, ())}
 
 
 def _number(x):

@@ -74,7 +74,7 @@ double BdIntegrator::step(State& state) {
     Vec3 e1, e2;
     perpendicular_basis(u, e1, e2);
     double xi[5];
-    noise.normals(step, i, 0, xi, 5);
+    noise.normals(step, i, settings_.replica, xi, 5);
 
     // Translation: mobility (D/kT) split along and across û, noise in the same frame.
     const double f_par = f.dot(u);

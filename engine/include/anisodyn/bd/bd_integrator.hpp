@@ -12,7 +12,7 @@
 // translate only.
 //
 // The noise of particle i at step n is the five normals of KeyedRandom(seed, kBdNoise) at counter
-// (n, i): the run gives the same numbers for any thread count and restarts bit for bit from a
+// (n, i, replica): the run gives the same numbers for any thread count and restarts bit for bit from a
 // state (the step counter is State::step).
 #include <cstdint>
 #include <optional>
@@ -34,6 +34,7 @@ struct BdSettings {
   double time_step = 0.0;
   double kT = 1.0;
   std::uint64_t seed = 1;
+  std::uint64_t replica = 0;  // independent noise streams of one seed
   std::vector<BdDiffusion> diffusion;  // per species
   /// Caps on the norm of each particle's total systematic force and torque (spec 20 §4.5); never on the noise.
   std::optional<double> force_cap, torque_cap;

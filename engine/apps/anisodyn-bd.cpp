@@ -1,0 +1,49 @@
+// anisodyn-bd: overdamped Brownian dynamics of rods and spheres (spec 20) from an H5MD state to an
+// H5MD trajectory. Frames and observables stream into <output>.partial; checkpoints go to
+// <output>.checkpoint.h5, and running the same command again resumes from it (run/run_files.hpp).
+#include "anisodyn/bd/bd_runner.hpp"
+#include "anisodyn/run/engine_main.hpp"
+#include "anisodyn/tool/command_line.hpp"
+
+using namespace anisodyn;
+
+namespace {
+
+tool::Description description() {
+  tool::Description d;
+  d.role = tool::Role::Engine;
+  d.replica = true;
+  d.inputs = {"state", 1, 1, "the starting state (its last frame)"};
+  d.output = {"trajectory", "H5MD", "frames by the frames rules, observables every observe_every steps, the summary", nullptr};
+  d.parameters = {
+      tool::seed_parameter(),
+      tool::required("time_step", "number", "the time step Δt (τ in reduced units, s in SI)"),
+      tool::optional("steps", "integer", nullptr, "run length in steps (or time)"),
+      tool::optional("time", "number", nullptr, "run length in time (or steps)"),
+      tool::optional("units", "object", nullptr, "{system: reduced | SI, length (m per length unit), temperature (K)}; reduced by default"),
+      tool::optional("species", "object", nullptr,
+                     "{name: {D_trans, D_rot} | {diffusion_from: {file, species}}}: diffusion tensors replacing the input's"),
+      tool::optional("frames", "object", nullptr, "frame rules: every_steps, every_time, log_first_time + log_per_decade, log_steps"),
+      tool::optional("observe_every", "integer", 100, "steps between observation rows"),
+      tool::optional("caps", "object", nullptr, "{force, torque}: step_bound (default), a value, or null (no cap)"),
+  };
+  // Work of a job = particles x steps; rate: free rods, bench/bd_throughput.cpp (docs/performance.md).
+  d.cost = {{"kind", "model"},
+            {"work", "particle-steps"},
+            {"amount", {"particles", {{"rule", "time_steps"}}}},  // steps, or time / time_step
+            {"rate", 5.0e6},
+            {"measured", "bench/bd_throughput.cpp, 2026-11-24: 1760 free rods, one core (docs/performance.md)"},
+            {"note", "free particles; interactions will lower the rate"}};
+  return d;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const tool::ToolInfo info{"anisodyn-bd", "Overdamped Brownian dynamics of rods and spheres", "See docs/bd.md.", description()};
+  return tool::run_tool(argc, argv, info, [&](tool::CommonOptions& opt) {
+    run::run_production_engine<BdRunner, BdProtocol>(opt, info, &parse_bd_protocol, [](const BdProtocol& p, nlohmann::json& provenance) {
+      provenance["units"] = p.units.to_json();  // the unit system of every number in the output
+    });
+  });
+}

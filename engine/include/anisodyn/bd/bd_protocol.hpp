@@ -1,0 +1,52 @@
+#pragma once
+// The anisodyn-bd configuration (docs/bd.md):
+//   {"seed": 1, "time_step": 5e-8, "steps": 100000 | "time": 0.005,
+//    "units": {"system": "reduced"} | {"system": "SI", "length": 1e-6, "temperature": 300},
+//    "species": {"rod": {"D_trans": [..], "D_rot": [..]} | {"diffusion_from": {..}}},   (io/diffusion_overrides.hpp)
+//    "frames": {...}, "observe_every": 100,                                           (run/frame_rules.hpp)
+//    "caps": {"force": "step_bound" | number | null, "torque": "step_bound" | number | null}}
+// Time is in the unit system's time (τ reduced, s in SI); lengths in the input's unit (SI: `length`
+// metres each); energies in kT (reduced) or J (SI, kT = k_B T).
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "anisodyn/io/diffusion_overrides.hpp"
+#include "anisodyn/run/frame_rules.hpp"
+#include "anisodyn/run/schedule.hpp"
+#include "anisodyn/system/state.hpp"
+#include "anisodyn/tool/json_config.hpp"
+
+namespace anisodyn {
+
+/// The unit system of a BD run, recorded in the output.
+struct BdUnits {
+  bool si = false;
+  double length_m = 1.0;       // SI: metres per length unit of the input
+  double temperature_K = 0.0;  // SI only
+  /// kT in the run's energy unit: 1 (reduced) or k_B T in J (SI).
+  double kT() const;
+  nlohmann::json to_json() const;
+};
+
+/// A cap on the norm of a rod's systematic force or torque (spec 20 §4.5).
+struct BdCap {
+  enum class Kind { None, StepBound, Value } kind = Kind::StepBound;
+  double value = 0.0;  // Kind::Value, in the run's units
+};
+
+struct BdProtocol {
+  std::uint64_t seed = 1;
+  std::uint64_t replica = 0;
+  double time_step = 0.0;
+  std::vector<run::FieldSegment> segments;  // the run length (BD has no field to switch)
+  run::FrameRules frames;
+  std::int64_t observe_every = 100;
+  BdUnits units;
+  io::DiffusionOverrides diffusion;
+  BdCap force_cap, torque_cap;
+};
+
+BdProtocol parse_bd_protocol(tool::ConfigNode& cfg);
+
+}  // namespace anisodyn

@@ -1,0 +1,54 @@
+#pragma once
+// An anisodyn-bd run: production by the shared production runner (run/production_runner.hpp), of
+// which BD is a client: one step is one BdIntegrator step of Δt. Observables every observe_every
+// steps: the order tensor of each rotating species, the capped force and torque events since the
+// previous row, the potential energy per particle. Checkpoints continue bit for bit.
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "anisodyn/bd/bd_integrator.hpp"
+#include "anisodyn/bd/bd_protocol.hpp"
+#include "anisodyn/io/h5md.hpp"
+#include "anisodyn/run/production_runner.hpp"
+
+namespace anisodyn {
+
+/// The body-frame diffusion of each species for BD: uniaxial about body z (the rod axis L), so
+/// D_trans T = W is D_⊥, L is D_∥, and D_rot T = W turns the axis; spheres translate only.
+/// Throws InputError(file, "species.<name>…") for a species the dynamics cannot move.
+std::vector<BdDiffusion> bd_diffusion(const State& state, const std::string& file);
+
+class BdRunner : public run::ProductionClient {
+ public:
+  BdRunner(State& state, const BdProtocol& protocol, const std::string& config_file, bool quiet);
+
+  void run(io::H5mdWriter& out, std::int64_t checkpoint_every, const std::function<void()>& checkpoint);
+  std::int64_t last_output_step() const { return production_.step(); }
+  nlohmann::json checkpoint_state() const;
+  void restore(const nlohmann::json& j);
+  const nlohmann::json& summary() const { return summary_; }
+
+ private:
+  // run::ProductionClient
+  double advance() override;
+  void observe(io::H5mdWriter& out, std::int64_t step, double time) override;
+  Vec3 switch_field(bool, std::int64_t) override { return Vec3::Zero(); }  // BD has no field (yet)
+  bool field_on() const override { return false; }
+
+  BdSettings integrator_settings(const std::string& config_file) const;
+  void finish_summary();
+
+  State& state_;
+  BdProtocol protocol_;
+  std::unique_ptr<BdIntegrator> integrator_;
+  run::ProductionRunner production_;
+  std::int64_t capped_forces_mark_ = 0, capped_torques_mark_ = 0;
+  bool attributes_written_ = false;
+  nlohmann::json summary_ = nlohmann::json::object();
+};
+
+}  // namespace anisodyn

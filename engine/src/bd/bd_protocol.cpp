@@ -1,0 +1,68 @@
+#include "anisodyn/bd/bd_protocol.hpp"
+
+#include "anisodyn/run/step_unit.hpp"
+
+namespace anisodyn {
+
+namespace {
+/// Boltzmann's constant, J/K (exact in the 2019 SI).
+constexpr double kBoltzmann = 1.380649e-23;
+
+BdUnits parse_units(tool::ConfigNode& cfg) {
+  BdUnits u;
+  auto node = cfg.optional_object("units");
+  if (!node) return u;
+  u.si = node->choice("system", {"reduced", "SI"}, "reduced") == "SI";
+  for (const char* key : {"length", "temperature"})
+    node->reject_unless(u.si, key, "in reduced units (lengths are the input's, kT = 1)");
+  if (u.si) {
+    u.length_m = node->positive("length");
+    u.temperature_K = node->positive("temperature");
+  }
+  return u;
+}
+
+BdCap parse_cap(tool::ConfigNode& caps, const std::string& key) {
+  BdCap c;
+  if (!caps.has(key)) return c;
+  const nlohmann::json& v = caps.value(key);
+  if (v.is_null()) {
+    c.kind = BdCap::Kind::None;
+  } else if (v.is_string()) {
+    caps.choice(key, {"step_bound"});
+  } else {
+    c.kind = BdCap::Kind::Value;
+    c.value = caps.positive(key);
+  }
+  return c;
+}
+}  // namespace
+
+double BdUnits::kT() const { return si ? kBoltzmann * temperature_K : 1.0; }
+
+nlohmann::json BdUnits::to_json() const {
+  if (!si) return {{"system", "reduced"}, {"length", "length unit of the input"}, {"time", "tau"}, {"energy", "kT"}};
+  return {{"system", "SI"}, {"length", std::to_string(length_m) + " m"}, {"length_m", length_m}, {"time", "s"}, {"energy", "J"},
+          {"temperature_K", temperature_K}, {"kT_J", kT()}};
+}
+
+BdProtocol parse_bd_protocol(tool::ConfigNode& cfg) {
+  BdProtocol p;
+  p.seed = static_cast<std::uint64_t>(cfg.non_negative_integer("seed", 1));
+  p.time_step = cfg.positive("time_step");
+  cfg.reject_unless(false, "schedule", "in a BD run: there is no field to switch (give the run length as steps or time)");
+  cfg.reject_unless(false, "field", "in a BD run (no external field yet)");
+  const run::StepUnit unit = run::StepUnit::steps();
+  p.segments = run::parse_schedule(cfg, unit, false);
+  p.frames = run::parse_frame_rules(cfg, unit);
+  p.observe_every = cfg.positive_integer("observe_every", 100);
+  p.units = parse_units(cfg);
+  p.diffusion = io::DiffusionOverrides::parse(cfg);
+  if (auto caps = cfg.optional_object("caps")) {
+    p.force_cap = parse_cap(*caps, "force");
+    p.torque_cap = parse_cap(*caps, "torque");
+  }
+  return p;
+}
+
+}  // namespace anisodyn

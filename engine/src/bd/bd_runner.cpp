@@ -1,0 +1,154 @@
+#include "anisodyn/bd/bd_runner.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "anisodyn/core/error.hpp"
+
+namespace anisodyn {
+
+namespace {
+run::ProductionSettings production_settings(const BdProtocol& p) {
+  return {p.segments, p.frames, p.observe_every, run::StepUnit::steps(), "bd"};
+}
+
+/// Order tensor S = ⟨ûû⟩ of the rods of species s: xx, yy, zz, xy, xz, yz.
+std::vector<double> order_tensor(const State& st, int s) {
+  Mat3 S = Mat3::Zero();
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < st.particles.size(); ++i) {
+    if (st.particles.species[i] != s) continue;
+    const Vec3 u = st.particles.orientation(i) * Vec3::UnitZ();
+    S += u * u.transpose();
+    ++n;
+  }
+  if (n > 0) S /= static_cast<double>(n);
+  return {S(0, 0), S(1, 1), S(2, 2), S(0, 1), S(0, 2), S(1, 2)};
+}
+
+bool same(double a, double b) { return std::abs(a - b) <= 1e-12 * std::max(std::abs(a), std::abs(b)); }
+}  // namespace
+
+std::vector<BdDiffusion> bd_diffusion(const State& state, const std::string& file) {
+  std::vector<BdDiffusion> out;
+  for (const Species& sp : state.species) {
+    const std::string at = "species." + sp.name;
+    const Vec3& t = sp.D_trans;
+    const Vec3& r = sp.D_rot;
+    if (!(t.minCoeff() > 0.0))
+      throw InputError(file, at + ".D_trans", "expected positive translational diffusion coefficients for species '" + sp.name +
+                                                  "' (none in the input's species table): give them here or in the species file");
+    if (!same(t.x(), t.y()))
+      throw InputError(file, at + ".D_trans", "expected a body uniaxial about its L axis (D_trans T = W) for species '" + sp.name + "'");
+    BdDiffusion d{t.z(), t.x(), 0.0};
+    if (sp.shape.is_anisotropic()) {
+      if (!(r.x() > 0.0) || !same(r.x(), r.y()))
+        throw InputError(file, at + ".D_rot", "expected positive rotational diffusion of the L axis, equal about T and W, for species '" +
+                                                  sp.name + "'");
+      d.rotation = r.x();
+    } else if (!same(t.x(), t.z())) {
+      throw InputError(file, at + ".D_trans", "expected isotropic translational diffusion for the spheres of species '" + sp.name + "'");
+    }
+    out.push_back(d);
+  }
+  return out;
+}
+
+BdSettings BdRunner::integrator_settings(const std::string& config_file) const {
+  BdSettings b;
+  b.time_step = protocol_.time_step;
+  b.kT = protocol_.units.kT();
+  b.seed = protocol_.seed;
+  b.replica = protocol_.replica;
+  b.diffusion = bd_diffusion(state_, config_file);
+  // Step bounds (spec 20 §4.5): no deterministic step longer than D/10 in translation or 2D/(10L)
+  // in rotation, D the particle's diameter and L its length; the smallest bound over the species.
+  double force = std::numeric_limits<double>::infinity(), torque = force;
+  for (std::size_t s = 0; s < state_.species.size(); ++s) {
+    const Shape& shape = state_.species[s].shape;
+    const BdDiffusion& d = b.diffusion[s];
+    force = std::min(force, 0.1 * shape.diameter * b.kT / (std::max(d.parallel, d.perpendicular) * b.time_step));
+    if (d.rotation > 0.0) torque = std::min(torque, 0.2 * shape.diameter * b.kT / (shape.length * d.rotation * b.time_step));
+  }
+  auto cap = [](const BdCap& c, double bound) -> std::optional<double> {
+    switch (c.kind) {
+      case BdCap::Kind::None: return std::nullopt;
+      case BdCap::Kind::Value: return c.value;
+      case BdCap::Kind::StepBound: return std::isfinite(bound) ? std::optional<double>(bound) : std::nullopt;
+    }
+    return std::nullopt;
+  };
+  b.force_cap = cap(protocol_.force_cap, force);
+  b.torque_cap = cap(protocol_.torque_cap, torque);
+  return b;
+}
+
+BdRunner::BdRunner(State& state, const BdProtocol& protocol, const std::string& config_file, bool quiet)
+    : state_(state), protocol_(protocol), production_(state, *this, production_settings(protocol), quiet) {
+  protocol_.diffusion.check(state_, config_file);
+  protocol_.diffusion.apply(state_.species);
+  const BdSettings settings = integrator_settings(config_file);
+  integrator_ = std::make_unique<BdIntegrator>(settings, nullptr);
+  summary_["units"] = protocol_.units.to_json();
+  summary_["caps"] = {{"force", settings.force_cap ? nlohmann::json(*settings.force_cap) : nlohmann::json(nullptr)},
+                      {"torque", settings.torque_cap ? nlohmann::json(*settings.torque_cap) : nlohmann::json(nullptr)}};
+}
+
+double BdRunner::advance() { return integrator_->step(state_); }
+
+void BdRunner::observe(io::H5mdWriter& out, std::int64_t step, double t) {
+  const double n = static_cast<double>(state_.particles.size());
+  out.append_observable("potential_energy", step, t, integrator_->systematic().energy / n);
+  out.append_observable("capped", step, t,
+                        std::vector<double>{static_cast<double>(integrator_->capped_forces() - capped_forces_mark_),
+                                            static_cast<double>(integrator_->capped_torques() - capped_torques_mark_)});
+  capped_forces_mark_ = integrator_->capped_forces();
+  capped_torques_mark_ = integrator_->capped_torques();
+  for (std::size_t s = 0; s < state_.species.size(); ++s)
+    if (state_.species[s].shape.is_anisotropic())
+      out.append_observable("order_tensor_" + state_.species[s].name, step, t, order_tensor(state_, static_cast<int>(s)));
+  if (attributes_written_) return;
+  const std::string energy = protocol_.units.si ? "J" : "kT";
+  auto attr = [&](const std::string& name, const std::string& units, const std::string& definition) {
+    out.set_observable_attribute(name, "units", units);
+    out.set_observable_attribute(name, "definition", definition);
+  };
+  attr("potential_energy", energy, "potential energy per particle at the start of the row's last step");
+  attr("capped", "1", "particle-steps whose systematic force, and torque, was capped since the previous row");
+  for (const auto& sp : state_.species)
+    if (sp.shape.is_anisotropic())
+      attr("order_tensor_" + sp.name, "1", "order tensor S = <u u> of the species' rod axes: xx, yy, zz, xy, xz, yz");
+  attributes_written_ = true;
+}
+
+void BdRunner::run(io::H5mdWriter& out, std::int64_t checkpoint_every, const std::function<void()>& checkpoint) {
+  run::CheckpointClock checkpoints(checkpoint_every, checkpoint);
+  production_.run(out, checkpoints, 0);
+  finish_summary();
+}
+
+void BdRunner::finish_summary() {
+  summary_["steps"] = production_.step();
+  summary_["time"] = production_.time();
+  summary_["time_step"] = protocol_.time_step;
+  summary_["capped_forces"] = integrator_->capped_forces();
+  summary_["capped_torques"] = integrator_->capped_torques();
+}
+
+nlohmann::json BdRunner::checkpoint_state() const {
+  return {{"production", production_.checkpoint_state()},
+          {"capped", {integrator_->capped_forces(), integrator_->capped_torques()}},
+          {"capped_mark", {capped_forces_mark_, capped_torques_mark_}},
+          {"summary", summary_}};
+}
+
+void BdRunner::restore(const nlohmann::json& j) {
+  production_.restore(j.at("production"));
+  integrator_->restore_counters(j.at("capped")[0].get<std::int64_t>(), j.at("capped")[1].get<std::int64_t>());
+  capped_forces_mark_ = j.at("capped_mark")[0].get<std::int64_t>();
+  capped_torques_mark_ = j.at("capped_mark")[1].get<std::int64_t>();
+  summary_ = j.at("summary");
+}
+
+}  // namespace anisodyn

@@ -1,0 +1,1 @@
+anisodyn_add_script_test(bd_pipeline bd_pipeline.py)
