@@ -27,13 +27,13 @@ tool::Description description() {
       tool::optional("observe_every", "integer", 100, "steps between observation rows"),
       tool::optional("caps", "object", nullptr, "{force, torque}: step_bound (default), a value, or null (no cap)"),
   };
-  // Work of a job = particles x steps; rate: free rods, bench/bd_throughput.cpp (docs/performance.md).
+  // Work of a job = particles x steps; rate: 1760 free rods, one core, bench/bd_throughput.cpp.
   d.cost = {{"kind", "model"},
             {"work", "particle-steps"},
             {"amount", {"particles", {{"rule", "time_steps"}}}},  // steps, or time / time_step
-            {"rate", 5.0e6},
-            {"measured", "bench/bd_throughput.cpp, 2026-11-24: 1760 free rods, one core (docs/performance.md)"},
-            {"note", "free particles; interactions will lower the rate"}};
+            {"rate", 4.5e6},
+            {"measured", "bench/bd_throughput.cpp, 2026-11-24: 1760 free rods, one core, median of 3 (docs/performance.md)"},
+            {"note", "free particles: interactions will lower the rate"}};
   return d;
 }
 
