@@ -23,6 +23,9 @@ tool::Description description() {
       tool::optional("units", "object", nullptr, "{system: reduced | SI, length (m per length unit), temperature (K)}; reduced by default"),
       tool::optional("species", "object", nullptr,
                      "{name: {D_trans, D_rot} | {diffusion_from: {file, species}}}: diffusion tensors replacing the input's"),
+      tool::optional("slender_body", "object", nullptr,
+                     "{rod species: {viscosity, diameter}}: free-rod D from the slender-body formulas of spec 20 §2 (diameter "
+                     "optional, default the species')"),
       tool::optional("frames", "object", nullptr, "frame rules: every_steps, every_time, log_first_time + log_per_decade, log_steps"),
       tool::optional("observe_every", "integer", 100, "steps between observation rows"),
       tool::optional("caps", "object", nullptr, "{force, torque}: step_bound (default), a value, or null (no cap)"),

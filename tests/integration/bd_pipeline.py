@@ -77,6 +77,25 @@ with h5py.File("straight.h5") as a, h5py.File("replica1.h5") as b:
     assert not np.array_equal(a["particles/all/position/value"][-1], b["particles/all/position/value"][-1])
 print("--replica 1: another trajectory")
 
+# SI units with the slender-body friction of spec 20 §2: the rods of spec 20 (L = 0.88 µm,
+# D = 14.8 nm, lengths in µm) in water at 300 K; 70-theory §5.1 gives D_par = 3.0603 µm²/s,
+# D_perp = 1.5302 µm²/s, D_r = 23.711 1/s.
+fd = {**rods, "species": [{"name": "rod", "shape": {"type": "spherocylinder", "length": 0.88, "diameter": 0.0148}}],
+      "box": {"edges": [2.08, 2.08, 2.08]}, "composition": [{"species": "rod", "count": 50, "orientation": {"mode": "random"}}]}
+json.dump(fd, open("fd.json", "w"))
+r = run([tool("anisodyn-config"), "-q", "--config", "fd.json", "--output", "fd_start.h5"])
+assert r.returncode == 0, r.stderr
+si = {"seed": 1, "time_step": 5e-8, "steps": 200, "units": {"system": "SI", "length": 1e-6, "temperature": 300},
+      "slender_body": {"rod": {"viscosity": 1e-3}}}
+json.dump(si, open("si.json", "w"))
+r = run([tool("anisodyn-bd"), "-q", "--config", "si.json", "--input", "fd_start.h5", "--output", "si.h5"])
+assert r.returncode == 0, r.stderr
+d = json.loads(r.stdout)["species"][0]
+assert abs(d["D_parallel"] - 3.0603) < 5e-5 and abs(d["D_perpendicular"] - 1.5302) < 5e-5 and abs(d["D_rotation"] - 23.711) < 5e-4, d
+with h5py.File("si.h5") as f:
+    assert json.loads(f["parameters/provenance"][()])["units"]["system"] == "SI"
+print(f"SI slender-body rods: D_par {d['D_parallel']:.5f} µm²/s, D_perp {d['D_perpendicular']:.5f} µm²/s, D_r {d['D_rotation']:.4f} 1/s")
+
 bad = [
     ("negative D_trans", {**bd, "species": {"rod": {"D_trans": [-1, 1, 2]}}}, "species.rod.D_trans"),
     ("unknown key", {**bd, "tme_step": 1}, "tme_step"),
@@ -84,6 +103,9 @@ bad = [
     ("SI without temperature", {**bd, "units": {"system": "SI", "length": 1e-6}}, "units.temperature"),
     ("temperature in reduced units", {**bd, "units": {"temperature": 300}}, "units.temperature"),
     ("zero time step", {**bd, "time_step": 0}, "time_step"),
+    ("slender body and species entry", {**bd, "species": {"rod": {"D_trans": [1, 1, 2]}}, "slender_body": {"rod": {"viscosity": 1}}},
+     "slender_body.rod"),
+    ("slender body of an unknown species", {**bd, "slender_body": {"disc": {"viscosity": 1}}}, "slender_body.disc"),
 ]
 for what, config, path in bad:
     json.dump(config, open("bad.json", "w"))

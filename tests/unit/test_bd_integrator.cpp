@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "anisodyn/bd/bd_integrator.hpp"
+#include "anisodyn/bd/slender_body.hpp"
 #include "anisodyn/core/quaternion.hpp"
 #include "anisodyn/core/rng.hpp"
 #include "anisodyn/core/statistics.hpp"
@@ -179,4 +180,16 @@ TEST(BdIntegrator, RefusesBadSettings) {
   b = settings(1e-3);
   b.diffusion[0].perpendicular = -1.0;
   EXPECT_THROW(BdIntegrator(b, nullptr), std::invalid_argument);
+}
+
+TEST(BdSlenderBody, FreeRodDiffusionOfSpec20) {
+  // L = 0.88 µm, D = 14.8 nm, η = 10⁻³ Pa s, T = 300 K (70-theory §5.1): D_∥ = 3.0603e-12 m²/s,
+  // D_⊥ = 1.5302e-12 m²/s, D_r = 23.711 s⁻¹ (the printed digits).
+  const double kT = 1.380649e-23 * 300.0;
+  const BdDiffusion d = slender_body_diffusion(0.88e-6, 14.8e-9, 1e-3, kT);
+  EXPECT_NEAR(d.parallel, 3.0603e-12, 0.00005e-12);
+  EXPECT_NEAR(d.perpendicular, 1.5302e-12, 0.00005e-12);
+  EXPECT_NEAR(d.rotation, 23.711, 0.0005);
+  EXPECT_NEAR((d.parallel + 2 * d.perpendicular) / 3, 2.0402e-12, 0.00005e-12);  // D_t
+  EXPECT_THROW(slender_body_diffusion(1.0, 1.0, 1e-3, kT), std::invalid_argument);
 }

@@ -58,6 +58,19 @@ BdProtocol parse_bd_protocol(tool::ConfigNode& cfg) {
   p.observe_every = cfg.positive_integer("observe_every", 100);
   p.units = parse_units(cfg);
   p.diffusion = io::DiffusionOverrides::parse(cfg);
+  if (auto sb = cfg.optional_object("slender_body")) {
+    for (const auto& [name, value] : sb->raw().items()) {
+      if (!name.empty() && name[0] == '_') continue;
+      auto node = sb->object(name);
+      SlenderBodySpec spec;
+      spec.viscosity = node.positive("viscosity");
+      if (node.has("diameter")) spec.diameter = node.positive("diameter");
+      spec.path = sb->child_path(name);
+      if (p.diffusion.entries.count(name))
+        sb->fail(name, "a species whose diffusion is given once: '" + name + "' also has an entry in species");
+      p.slender_body.emplace(name, spec);
+    }
+  }
   if (auto caps = cfg.optional_object("caps")) {
     p.force_cap = parse_cap(*caps, "force");
     p.torque_cap = parse_cap(*caps, "torque");

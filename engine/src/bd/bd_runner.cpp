@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "anisodyn/bd/slender_body.hpp"
 #include "anisodyn/core/error.hpp"
 
 namespace anisodyn {
@@ -55,6 +56,24 @@ std::vector<BdDiffusion> bd_diffusion(const State& state, const std::string& fil
   return out;
 }
 
+void apply_slender_body(State& state, const std::map<std::string, SlenderBodySpec>& slender_body, const BdUnits& units,
+                        const std::string& file) {
+  for (const auto& [name, spec] : slender_body) {
+    auto it = std::find_if(state.species.begin(), state.species.end(), [&](const Species& s) { return s.name == name; });
+    if (it == state.species.end()) throw InputError(file, spec.path, "unknown species '" + name + "': expected one of the input's species");
+    if (it->shape.kind != ShapeKind::Spherocylinder)
+      throw InputError(file, spec.path, "expected a rod (spherocylinder) species for the slender-body formulas; '" + name + "' is not");
+    const double metres = units.si ? units.length_m : 1.0;
+    const double diameter = spec.diameter.value_or(it->shape.diameter);
+    if (!(it->shape.length > diameter))
+      throw InputError(file, spec.path, "expected a rod longer than its diameter (L > D) for the slender-body formulas");
+    const BdDiffusion d = slender_body_diffusion(it->shape.length * metres, diameter * metres, spec.viscosity, units.kT());
+    const double to_units = 1.0 / (metres * metres);  // m²/s → length units²/s (SI); 1 reduced
+    it->D_trans = Vec3(d.perpendicular, d.perpendicular, d.parallel) * to_units;
+    it->D_rot = Vec3(d.rotation, d.rotation, 0.0);
+  }
+}
+
 BdSettings BdRunner::integrator_settings(const std::string& config_file) const {
   BdSettings b;
   b.time_step = protocol_.time_step;
@@ -88,9 +107,17 @@ BdRunner::BdRunner(State& state, const BdProtocol& protocol, const std::string& 
     : state_(state), protocol_(protocol), production_(state, *this, production_settings(protocol), quiet) {
   protocol_.diffusion.check(state_, config_file);
   protocol_.diffusion.apply(state_.species);
+  apply_slender_body(state_, protocol_.slender_body, protocol_.units, config_file);
   const BdSettings settings = integrator_settings(config_file);
   integrator_ = std::make_unique<BdIntegrator>(settings, nullptr);
   summary_["units"] = protocol_.units.to_json();
+  summary_["species"] = nlohmann::json::array();
+  for (std::size_t s = 0; s < state_.species.size(); ++s)
+    summary_["species"].push_back({{"name", state_.species[s].name},
+                                   {"D_parallel", settings.diffusion[s].parallel},
+                                   {"D_perpendicular", settings.diffusion[s].perpendicular},
+                                   {"D_rotation", settings.diffusion[s].rotation},
+                                   {"slender_body", protocol_.slender_body.count(state_.species[s].name) > 0}});
   summary_["caps"] = {{"force", settings.force_cap ? nlohmann::json(*settings.force_cap) : nlohmann::json(nullptr)},
                       {"torque", settings.torque_cap ? nlohmann::json(*settings.torque_cap) : nlohmann::json(nullptr)}};
 }

@@ -3,11 +3,14 @@
 //   {"seed": 1, "time_step": 5e-8, "steps": 100000 | "time": 0.005,
 //    "units": {"system": "reduced"} | {"system": "SI", "length": 1e-6, "temperature": 300},
 //    "species": {"rod": {"D_trans": [..], "D_rot": [..]} | {"diffusion_from": {..}}},   (io/diffusion_overrides.hpp)
+//    "slender_body": {"rod": {"viscosity": 1e-3, "diameter": 0.0148}},   (bd/slender_body.hpp; diameter optional)
 //    "frames": {...}, "observe_every": 100,                                           (run/frame_rules.hpp)
 //    "caps": {"force": "step_bound" | number | null, "torque": "step_bound" | number | null}}
 // Time is in the unit system's time (τ reduced, s in SI); lengths in the input's unit (SI: `length`
 // metres each); energies in kT (reduced) or J (SI, kT = k_B T).
 #include <cstdint>
+#include <map>
+#include <string>
 #include <optional>
 #include <vector>
 
@@ -35,6 +38,13 @@ struct BdCap {
   double value = 0.0;  // Kind::Value, in the run's units
 };
 
+/// Free-rod diffusion from the slender-body formulas (spec 20 §2) instead of the species table.
+struct SlenderBodySpec {
+  double viscosity = 0.0;           // Pa s in SI, kT τ/σ³ reduced
+  std::optional<double> diameter;   // in ln(L/D); default the species' diameter (the spec's flag for D_eff)
+  std::string path;                 // JSON path, for errors found against the input
+};
+
 struct BdProtocol {
   std::uint64_t seed = 1;
   std::uint64_t replica = 0;
@@ -44,6 +54,7 @@ struct BdProtocol {
   std::int64_t observe_every = 100;
   BdUnits units;
   io::DiffusionOverrides diffusion;
+  std::map<std::string, SlenderBodySpec> slender_body;
   BdCap force_cap, torque_cap;
 };
 

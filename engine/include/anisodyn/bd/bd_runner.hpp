@@ -22,6 +22,12 @@ namespace anisodyn {
 /// Throws InputError(file, "species.<name>…") for a species the dynamics cannot move.
 std::vector<BdDiffusion> bd_diffusion(const State& state, const std::string& file);
 
+/// Sets the D tensors of the species named in `slender_body` from the slender-body formulas, in
+/// the run's units (SI: lengths converted to metres and D back to length units²/s). Throws
+/// InputError(file, "slender_body.<name>") for an unknown species or one that is not a rod.
+void apply_slender_body(State& state, const std::map<std::string, SlenderBodySpec>& slender_body, const BdUnits& units,
+                        const std::string& file);
+
 class BdRunner : public run::ProductionClient {
  public:
   BdRunner(State& state, const BdProtocol& protocol, const std::string& config_file, bool quiet);
