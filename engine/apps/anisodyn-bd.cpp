@@ -28,6 +28,9 @@ tool::Description description() {
                      "optional, default the species')"),
       tool::optional("frames", "object", nullptr, "frame rules: every_steps, every_time, log_first_time + log_per_decade, log_steps"),
       tool::optional("observe_every", "integer", 100, "steps between observation rows"),
+      tool::optional("potential", "object", nullptr,
+                     "{type: overlap_volume, species, hardness (kT/D^3; default k f(0.8D) = kT), finite_length: segment_distance | "
+                     "interior_only, skin}: the rod-rod potential of spec 20 §4; none: free particles"),
       tool::optional("caps", "object", nullptr, "{force, torque}: step_bound (default), a value, or null (no cap)"),
   };
   // Work of a job = particles x steps; rate: 1760 free rods, one core, bench/bd_throughput.cpp.
@@ -47,6 +50,8 @@ int main(int argc, char** argv) {
   return tool::run_tool(argc, argv, info, [&](tool::CommonOptions& opt) {
     run::run_production_engine<BdRunner, BdProtocol>(opt, info, &parse_bd_protocol, [](const BdProtocol& p, nlohmann::json& provenance) {
       provenance["units"] = p.units.to_json();  // the unit system of every number in the output
+      if (p.potential)  // the finite-length rule of the main branch (spec 20 §4.1), whether given or by default
+        provenance["potential"] = {{"type", "overlap_volume"}, {"finite_length", p.potential->interior_only ? "interior_only" : "segment_distance"}};
     });
   });
 }

@@ -71,6 +71,15 @@ BdProtocol parse_bd_protocol(tool::ConfigNode& cfg) {
       p.slender_body.emplace(name, spec);
     }
   }
+  if (auto pot = cfg.optional_object("potential")) {
+    pot->choice("type", {"overlap_volume"});
+    OverlapVolumeSpec spec;
+    spec.species = pot->string("species", "");
+    if (pot->has("hardness")) spec.hardness = pot->positive("hardness");
+    spec.interior_only = pot->choice("finite_length", {"segment_distance", "interior_only"}, "segment_distance") == "interior_only";
+    if (pot->has("skin")) spec.skin = pot->positive("skin");
+    p.potential = spec;
+  }
   if (auto caps = cfg.optional_object("caps")) {
     p.force_cap = parse_cap(*caps, "force");
     p.torque_cap = parse_cap(*caps, "torque");

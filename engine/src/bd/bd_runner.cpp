@@ -109,7 +109,10 @@ BdRunner::BdRunner(State& state, const BdProtocol& protocol, const std::string& 
   protocol_.diffusion.apply(state_.species);
   apply_slender_body(state_, protocol_.slender_body, protocol_.units, config_file);
   const BdSettings settings = integrator_settings(config_file);
-  integrator_ = std::make_unique<BdIntegrator>(settings, nullptr);
+  build_rod_forces(config_file);
+  ForceField forces;
+  if (rod_forces_) forces = [this](const State& s, BodyForces& out) { (*rod_forces_)(s, out); };
+  integrator_ = std::make_unique<BdIntegrator>(settings, forces);
   summary_["units"] = protocol_.units.to_json();
   summary_["species"] = nlohmann::json::array();
   for (std::size_t s = 0; s < state_.species.size(); ++s)
@@ -120,6 +123,39 @@ BdRunner::BdRunner(State& state, const BdProtocol& protocol, const std::string& 
                                    {"slender_body", protocol_.slender_body.count(state_.species[s].name) > 0}});
   summary_["caps"] = {{"force", settings.force_cap ? nlohmann::json(*settings.force_cap) : nlohmann::json(nullptr)},
                       {"torque", settings.torque_cap ? nlohmann::json(*settings.torque_cap) : nlohmann::json(nullptr)}};
+}
+
+void BdRunner::build_rod_forces(const std::string& config_file) {
+  if (!protocol_.potential) return;
+  const OverlapVolumeSpec& spec = *protocol_.potential;
+  int rods = -1;
+  for (std::size_t s = 0; s < state_.species.size(); ++s) {
+    const Species& sp = state_.species[s];
+    const bool named = spec.species.empty() ? sp.shape.kind == ShapeKind::Spherocylinder : sp.name == spec.species;
+    if (!named) continue;
+    if (rods >= 0) throw InputError(config_file, spec.path + ".species", "expected the rod species to be named: the input has several rod species");
+    rods = static_cast<int>(s);
+  }
+  if (rods < 0)
+    throw InputError(config_file, spec.path + ".species",
+                     spec.species.empty() ? "expected a rod (spherocylinder) species in the input" : "unknown species '" + spec.species + "'");
+  const Shape& shape = state_.species[static_cast<std::size_t>(rods)].shape;
+  if (shape.kind != ShapeKind::Spherocylinder || !(shape.length > shape.diameter))
+    throw InputError(config_file, spec.path + ".species", "expected rods (spherocylinders) longer than their diameter");
+  const double kT = protocol_.units.kT(), D = shape.diameter;
+  OverlapVolumeSettings ov;
+  ov.length = shape.length;
+  ov.diameter = D;
+  ov.hardness = spec.hardness ? *spec.hardness * kT / (D * D * D) : OverlapVolume::hardness_for(D, kT);
+  ov.rule = spec.interior_only ? FiniteLengthRule::InteriorOnly : FiniteLengthRule::SegmentDistance;
+  RodOverlapPairs pairs{OverlapVolume(ov), rods, {}, {}};
+  const auto ns = static_cast<int>(state_.species.size());
+  rod_forces_ = std::make_unique<PairForceField<RodOverlapPairs>>(pairs, pairs.cutoffs(ns), ns, spec.skin.value_or(shape.length / 20.0));
+  summary_["potential"] = {{"type", "overlap_volume"},
+                           {"species", state_.species[static_cast<std::size_t>(rods)].name},
+                           {"hardness", ov.hardness},
+                           {"hardness_kT_per_D3", ov.hardness * D * D * D / kT},
+                           {"finite_length", spec.interior_only ? "interior_only" : "segment_distance"}};
 }
 
 double BdRunner::advance() { return integrator_->step(state_); }

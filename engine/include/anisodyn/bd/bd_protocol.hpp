@@ -5,6 +5,8 @@
 //    "species": {"rod": {"D_trans": [..], "D_rot": [..]} | {"diffusion_from": {..}}},   (io/diffusion_overrides.hpp)
 //    "slender_body": {"rod": {"viscosity": 1e-3, "diameter": 0.0148}},   (bd/slender_body.hpp; diameter optional)
 //    "frames": {...}, "observe_every": 100,                                           (run/frame_rules.hpp)
+//    "potential": {"type": "overlap_volume", "species": "rod", "hardness": 17.71, "finite_length":
+//                  "segment_distance" | "interior_only", "skin": 0.04},                       (spec 20 §4)
 //    "caps": {"force": "step_bound" | number | null, "torque": "step_bound" | number | null}}
 // Time is in the unit system's time (τ reduced, s in SI); lengths in the input's unit (SI: `length`
 // metres each); energies in kT (reduced) or J (SI, kT = k_B T).
@@ -45,6 +47,15 @@ struct SlenderBodySpec {
   std::string path;                 // JSON path, for errors found against the input
 };
 
+/// The rod–rod overlap-volume potential (spec 20 §4); absent: free particles.
+struct OverlapVolumeSpec {
+  std::string species;             // the rod species; empty: the input's only spherocylinder species
+  std::optional<double> hardness;  // k in kT/D³ (D the bare diameter); default: k f(0.8D) = kT
+  bool interior_only = false;      // the finite-length rule (default: segment distance)
+  std::optional<double> skin;      // Verlet-list skin in length units; default L/20
+  std::string path = "potential";
+};
+
 struct BdProtocol {
   std::uint64_t seed = 1;
   std::uint64_t replica = 0;
@@ -55,6 +66,7 @@ struct BdProtocol {
   BdUnits units;
   io::DiffusionOverrides diffusion;
   std::map<std::string, SlenderBodySpec> slender_body;
+  std::optional<OverlapVolumeSpec> potential;
   BdCap force_cap, torque_cap;
 };
 

@@ -12,6 +12,8 @@
 
 #include "anisodyn/bd/bd_integrator.hpp"
 #include "anisodyn/bd/bd_protocol.hpp"
+#include "anisodyn/interactions/pair_force_field.hpp"
+#include "anisodyn/interactions/rod_overlap_pairs.hpp"
 #include "anisodyn/io/h5md.hpp"
 #include "anisodyn/run/production_runner.hpp"
 
@@ -46,10 +48,13 @@ class BdRunner : public run::ProductionClient {
   bool field_on() const override { return false; }
 
   BdSettings integrator_settings(const std::string& config_file) const;
+  /// The rod–rod force field of protocol_.potential, or none.
+  void build_rod_forces(const std::string& config_file);
   void finish_summary();
 
   State& state_;
   BdProtocol protocol_;
+  std::unique_ptr<PairForceField<RodOverlapPairs>> rod_forces_;
   std::unique_ptr<BdIntegrator> integrator_;
   run::ProductionRunner production_;
   std::int64_t capped_forces_mark_ = 0, capped_torques_mark_ = 0;
