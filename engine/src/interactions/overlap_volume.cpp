@@ -178,6 +178,13 @@ RodPairTerm OverlapVolume::operator()(const Vec3& r_ji, const Vec3& u_i, const V
     // Closest points p_1 = r_1 + a û_1, p_2 = r_2 + b û_2 minimise |w|², w = p_1 − p_2 = a û_1 − b û_2 − t,
     // t = r_2 − r_1.
     const Vec3 t = swapped ? Vec3(-r_ji) : r_ji;
+    // Most listed pairs of long rods do not touch: the distance of the infinite axes, a lower bound
+    // of the segments' distance, rejects them before the closest points are sought.
+    const double line_gap = std::abs(t.dot(normal12)) / sin_g;
+    if (line_gap >= D) {
+      term.distance = line_gap;
+      return term;
+    }
     const double half = 0.5 * L, t1 = t.dot(u1), t2 = t.dot(u2);
     double a = (t1 - c * t2) / sin2, b = 0.0;  // a of the infinite lines
     if (s_.rule == FiniteLengthRule::SegmentDistance) {
