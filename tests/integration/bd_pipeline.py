@@ -71,8 +71,16 @@ with h5py.File("straight.h5") as f:
     assert capped.tolist() == [summary["capped_forces"], summary["capped_torques"]], (capped, summary)
     energy = group["potential_energy/value"][...]
     assert energy.max() > 0, "the overlap-volume potential never acted"
+    # P_d(x) of the interacting pairs, summed over the observations, and D_eff = D <x> (spec 20 §5).
+    hist = (f["observables"] if "pair_distance_histogram" in f.get("observables", {}) else
+            f["anisodyn/observables"])["pair_distance_histogram/value"][...]
+    assert hist.shape == (1, 100) and hist.sum() == summary["pair_distances"]["pairs"] > 0, (hist.shape, summary["pair_distances"])
+    x = (np.arange(100) + 0.5) / 100
+    assert abs((hist[0] * x).sum() / hist.sum() * 0.1 - summary["pair_distances"]["effective_diameter"]) < 1e-12
+    assert 0 < summary["pair_distances"]["effective_diameter"] < 0.1
     print(f"uninterrupted: {duration:.1f} s; {len(steps)} frames; S_zz over the run {S[:, 2].mean():.4f} (isotropic 1/3); "
-          f"energy per rod {energy.mean():.3g} kT; capped {summary['capped_forces']} forces, {summary['capped_torques']} torques")
+          f"energy per rod {energy.mean():.3g} kT; capped {summary['capped_forces']} forces, {summary['capped_torques']} torques; "
+          f"{int(hist.sum())} interacting pairs, D_eff/D = {summary['pair_distances']['mean_x']:.3f}")
 
 summaries = check_resumes(bd_cmd, "bd", "straight.h5", duration, run)
 for s in summaries:

@@ -2,7 +2,9 @@
 // An anisodyn-bd run: production by the shared production runner (run/production_runner.hpp), of
 // which BD is a client: one step is one BdIntegrator step of Δt. Observables every observe_every
 // steps: the order tensor of each rotating species, the capped force and torque events since the
-// previous row, the potential energy per particle. Checkpoints continue bit for bit.
+// previous row, the potential energy per particle; with the rod potential, the histogram P_d(x) of
+// x = d/D over the interacting rod pairs at every observation (spec 20 §5), written at the end with
+// the effective diameter. Checkpoints continue bit for bit.
 #include <functional>
 #include <memory>
 #include <string>
@@ -51,6 +53,9 @@ class BdRunner : public run::ProductionClient {
   /// The rod–rod force field of protocol_.potential, or none.
   void build_rod_forces(const std::string& config_file);
   void finish_summary();
+  /// Adds the interacting rod pairs of the current state to the P_d(x) histogram.
+  void sample_pair_distances();
+  void write_pair_distances(io::H5mdWriter& out);
 
   State& state_;
   BdProtocol protocol_;
@@ -59,6 +64,8 @@ class BdRunner : public run::ProductionClient {
   run::ProductionRunner production_;
   std::int64_t capped_forces_mark_ = 0, capped_torques_mark_ = 0;
   bool attributes_written_ = false;
+  std::vector<std::int64_t> pair_distances_;  // P_d(x): counts in bins of x = d/D of width 0.01
+  std::int64_t pair_distance_samples_ = 0;    // observations that added to it
   nlohmann::json summary_ = nlohmann::json::object();
 };
 

@@ -35,6 +35,18 @@ class PairForceField {
     for (const Mat3& w : sums.virial) out.virial += w;
   }
 
+  /// Calls fn(i, j, d) once for every listed pair i < j, d = minimum-image r_j − r_i, after
+  /// preparing the evaluator and updating the list for `s` (for observers of pair statistics).
+  template <class Fn>
+  void for_each_pair(const State& s, Fn&& fn) {
+    if constexpr (requires { eval_.prepare(s); }) eval_.prepare(s);
+    list_.update(s.box, s.particles);
+    for (std::size_t i = 0; i < s.particles.size(); ++i)
+      for (const std::int32_t j : list_.partners(i))
+        if (static_cast<std::size_t>(j) > i)
+          fn(i, static_cast<std::size_t>(j), s.box.min_image(s.particles.position(static_cast<std::size_t>(j)) - s.particles.position(i)));
+  }
+
   const Eval& evaluator() const { return eval_; }
   Eval& evaluator() { return eval_; }
   const VerletList& list() const { return list_; }
