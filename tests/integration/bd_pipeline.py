@@ -78,6 +78,9 @@ with h5py.File("straight.h5") as f:
     x = (np.arange(100) + 0.5) / 100
     assert abs((hist[0] * x).sum() / hist.sum() * 0.1 - summary["pair_distances"]["effective_diameter"]) < 1e-12
     assert 0 < summary["pair_distances"]["effective_diameter"] < 0.1
+    # Method III's torque (spec 20 §6.3) rides with every frame, at the frame's configuration.
+    torque = f["particles/all/systematic_torque/value"][...]
+    assert torque.shape == (len(steps), 400, 3) and np.count_nonzero(torque.any(axis=2)) > 0, torque.shape
     print(f"uninterrupted: {duration:.1f} s; {len(steps)} frames; S_zz over the run {S[:, 2].mean():.4f} (isotropic 1/3); "
           f"energy per rod {energy.mean():.3g} kT; capped {summary['capped_forces']} forces, {summary['capped_torques']} torques; "
           f"{int(hist.sum())} interacting pairs, D_eff/D = {summary['pair_distances']['mean_x']:.3f}")

@@ -201,6 +201,14 @@ void BdRunner::write_pair_distances(io::H5mdWriter& out) {
                                 {"note", "x from the bin centres; D_eff = D <x>"}};
 }
 
+std::vector<io::ParticleElement> BdRunner::frame_elements() const {
+  if (!rod_forces_) return {};
+  frame_forces_.reset(state_.particles.size());
+  (*rod_forces_)(state_, frame_forces_);
+  static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 rows are stored contiguously");
+  return {{"systematic_torque", 3, frame_forces_.torque.data()->data()}};
+}
+
 double BdRunner::advance() { return integrator_->step(state_); }
 
 void BdRunner::observe(io::H5mdWriter& out, std::int64_t step, double t) {

@@ -48,6 +48,9 @@ class BdRunner : public run::ProductionClient {
   void observe(io::H5mdWriter& out, std::int64_t step, double time) override;
   Vec3 switch_field(bool, std::int64_t) override { return Vec3::Zero(); }  // BD has no field (yet)
   bool field_on() const override { return false; }
+  /// With the rod potential: the systematic torque on each particle at the frame's configuration,
+  /// before any cap (spec 20 §6.3, Method III's T̄), as `systematic_torque`.
+  std::vector<io::ParticleElement> frame_elements() const override;
 
   BdSettings integrator_settings(const std::string& config_file) const;
   /// The rod–rod force field of protocol_.potential, or none.
@@ -61,6 +64,7 @@ class BdRunner : public run::ProductionClient {
   BdProtocol protocol_;
   std::unique_ptr<PairForceField<RodOverlapPairs>> rod_forces_;
   std::unique_ptr<BdIntegrator> integrator_;
+  mutable BodyForces frame_forces_;  // the systematic forces at the last frame
   run::ProductionRunner production_;
   std::int64_t capped_forces_mark_ = 0, capped_torques_mark_ = 0;
   bool attributes_written_ = false;
