@@ -114,6 +114,18 @@ with h5py.File("si.h5") as f:
     assert json.loads(f["parameters/provenance"][()])["units"]["system"] == "SI"
 print(f"SI slender-body rods: D_par {d['D_parallel']:.5f} µm²/s, D_perp {d['D_perpendicular']:.5f} µm²/s, D_r {d['D_rotation']:.4f} 1/s")
 
+# Method II (spec 20 §6.2): a torque of 10 kT about z on rods 0 and 1, confined to the xy plane.
+m2 = {**bd, "steps": 2000, "external_torque": {"particles": [0, 1], "torque_kT": 10, "confinement_kT": 100, "record_every": 10}}
+m2.pop("potential")
+json.dump(m2, open("m2.json", "w"))
+r = run(bd_cmd("m2.h5", "m2.json"))
+assert r.returncode == 0, r.stderr
+with h5py.File("m2.h5") as f:
+    group = f["observables"] if "tagged_axes" in f.get("observables", {}) else f["anisodyn/observables"]
+    axes = group["tagged_axes/value"][...]
+    assert axes.shape == (200, 6), axes.shape
+print(f"Method II run: tagged axes recorded {axes.shape}")
+
 bad = [
     ("negative D_trans", {**bd, "species": {"rod": {"D_trans": [-1, 1, 2]}}}, "species.rod.D_trans"),
     ("unknown key", {**bd, "tme_step": 1}, "tme_step"),
@@ -123,6 +135,8 @@ bad = [
     ("zero time step", {**bd, "time_step": 0}, "time_step"),
     ("slender body and species entry", {**bd, "species": {"rod": {"D_trans": [1, 1, 2]}}, "slender_body": {"rod": {"viscosity": 1}}},
      "slender_body.rod"),
+    ("external torque on an unknown particle", {**bd, "external_torque": {"particles": [4000], "torque_kT": 10}},
+     "external_torque.particles[0]"),
     ("slender body of an unknown species", {**bd, "slender_body": {"disc": {"viscosity": 1}}}, "slender_body.disc"),
 ]
 for what, config, path in bad:

@@ -2,6 +2,8 @@
 
 #include "anisodyn/run/step_unit.hpp"
 
+#include <algorithm>
+
 namespace anisodyn {
 
 namespace {
@@ -79,6 +81,27 @@ BdProtocol parse_bd_protocol(tool::ConfigNode& cfg) {
     spec.interior_only = pot->choice("finite_length", {"segment_distance", "interior_only"}, "segment_distance") == "interior_only";
     if (pot->has("skin")) spec.skin = pot->positive("skin");
     p.potential = spec;
+  }
+  if (auto ext = cfg.optional_object("external_torque")) {
+    ExternalTorqueSpec e;
+    const nlohmann::json& ids = ext->value("particles");
+    if (!ids.is_array() || ids.empty()) ext->fail("particles", "expected a non-empty list of particle ids");
+    for (const auto& id : ids) {
+      if (!id.is_number_integer() || id.get<std::int64_t>() < 0) ext->fail("particles", "expected non-negative integer particle ids");
+      e.particles.push_back(id.get<std::int64_t>());
+    }
+    e.torque_kT = ext->positive("torque_kT");
+    if (ext->has("axis")) {
+      const nlohmann::json& a = ext->value("axis");
+      if (!a.is_array() || a.size() != 3 || !std::all_of(a.begin(), a.end(), [](const nlohmann::json& v) { return v.is_number(); }))
+        ext->fail("axis", "expected three numbers");
+      e.axis = Vec3(a[0].get<double>(), a[1].get<double>(), a[2].get<double>());
+      if (!(e.axis.norm() > 0.0)) ext->fail("axis", "expected a non-zero direction");
+      e.axis.normalize();
+    }
+    e.confinement_kT = ext->non_negative("confinement_kT", 0.0);
+    e.record_every = ext->positive_integer("record_every", 1);
+    p.external_torque = e;
   }
   if (auto caps = cfg.optional_object("caps")) {
     p.force_cap = parse_cap(*caps, "force");

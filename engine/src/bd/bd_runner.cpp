@@ -113,8 +113,13 @@ BdRunner::BdRunner(State& state, const BdProtocol& protocol, const std::string& 
   apply_slender_body(state_, protocol_.slender_body, protocol_.units, config_file);
   const BdSettings settings = integrator_settings(config_file);
   build_rod_forces(config_file);
+  build_external_torque(config_file);
   ForceField forces;
-  if (rod_forces_) forces = [this](const State& s, BodyForces& out) { (*rod_forces_)(s, out); };
+  if (rod_forces_ || external_)
+    forces = [this](const State& s, BodyForces& out) {
+      if (rod_forces_) (*rod_forces_)(s, out);
+      if (external_) add_external_torque(*external_, s, out);
+    };
   integrator_ = std::make_unique<BdIntegrator>(settings, forces);
   summary_["units"] = protocol_.units.to_json();
   summary_["species"] = nlohmann::json::array();
@@ -207,6 +212,43 @@ std::vector<io::ParticleElement> BdRunner::frame_elements() const {
   (*rod_forces_)(state_, frame_forces_);
   static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 rows are stored contiguously");
   return {{"systematic_torque", 3, frame_forces_.torque.data()->data()}};
+}
+
+void BdRunner::build_external_torque(const std::string& config_file) {
+  if (!protocol_.external_torque) return;
+  const ExternalTorqueSpec& spec = *protocol_.external_torque;
+  ExternalTorque ext;
+  for (std::size_t k = 0; k < spec.particles.size(); ++k) {
+    const auto& ids = state_.particles.id;
+    const auto it = std::find(ids.begin(), ids.end(), spec.particles[k]);
+    const std::string path = "external_torque.particles[" + std::to_string(k) + "]";
+    if (it == ids.end()) throw InputError(config_file, path, "no particle with id " + std::to_string(spec.particles[k]) + " in the input");
+    const auto i = static_cast<std::size_t>(it - ids.begin());
+    if (!state_.species[static_cast<std::size_t>(state_.particles.species[i])].shape.is_anisotropic())
+      throw InputError(config_file, path, "expected a rod: a sphere does not turn");
+    ext.particles.push_back(i);
+  }
+  const double kT = protocol_.units.kT();
+  ext.torque = spec.torque_kT * kT * spec.axis;
+  ext.confinement = spec.confinement_kT * kT;
+  external_ = ext;
+  summary_["external_torque"] = {{"particles", spec.particles}, {"torque_kT", spec.torque_kT}, {"confinement_kT", spec.confinement_kT},
+                                 {"axis", {spec.axis.x(), spec.axis.y(), spec.axis.z()}}};
+}
+
+void BdRunner::after_step(io::H5mdWriter& out, std::int64_t step, double time) {
+  if (!external_ || step % protocol_.external_torque->record_every != 0) return;
+  std::vector<double> axes;
+  for (const std::size_t i : external_->particles) {
+    const Vec3 u = state_.particles.orientation(i) * Vec3::UnitZ();
+    axes.insert(axes.end(), {u.x(), u.y(), u.z()});
+  }
+  out.append_observable("tagged_axes", step, time, axes);
+  if (step == protocol_.external_torque->record_every) {
+    out.set_observable_attribute("tagged_axes", "units", "1");
+    out.set_observable_attribute("tagged_axes", "definition",
+                                 "axes û (x, y, z) of the rods under the external torque, in the order of external_torque.particles");
+  }
 }
 
 double BdRunner::advance() { return integrator_->step(state_); }

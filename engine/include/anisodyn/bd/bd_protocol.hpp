@@ -7,6 +7,8 @@
 //    "frames": {...}, "observe_every": 100,                                           (run/frame_rules.hpp)
 //    "potential": {"type": "overlap_volume", "species": "rod", "hardness": 17.71, "finite_length":
 //                  "segment_distance" | "interior_only", "skin": 0.04},                       (spec 20 §4)
+//    "external_torque": {"particles": [0], "torque_kT": 10, "axis": [0, 0, 1], "confinement_kT": 100,
+//                        "record_every": 10},                                             (spec 20 §6.2)
 //    "caps": {"force": "step_bound" | number | null, "torque": "step_bound" | number | null}}
 // Time is in the unit system's time (τ reduced, s in SI); lengths in the input's unit (SI: `length`
 // metres each); energies in kT (reduced) or J (SI, kT = k_B T).
@@ -56,6 +58,15 @@ struct OverlapVolumeSpec {
   std::string path = "potential";
 };
 
+/// Method II (spec 20 §6.2): a constant torque on tagged rods, confined to the plane ⊥ the torque.
+struct ExternalTorqueSpec {
+  std::vector<std::int64_t> particles;  // ids of the tagged rods
+  double torque_kT = 0.0;               // βT_ex
+  Vec3 axis = Vec3::UnitZ();            // direction of T_ex
+  double confinement_kT = 0.0;          // βκ_c
+  std::int64_t record_every = 1;        // steps between rows of the tagged axes
+};
+
 struct BdProtocol {
   std::uint64_t seed = 1;
   std::uint64_t replica = 0;
@@ -67,6 +78,7 @@ struct BdProtocol {
   io::DiffusionOverrides diffusion;
   std::map<std::string, SlenderBodySpec> slender_body;
   std::optional<OverlapVolumeSpec> potential;
+  std::optional<ExternalTorqueSpec> external_torque;
   BdCap force_cap, torque_cap;
 };
 

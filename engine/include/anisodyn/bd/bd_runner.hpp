@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "anisodyn/bd/bd_integrator.hpp"
+#include "anisodyn/bd/external_torque.hpp"
 #include "anisodyn/bd/bd_protocol.hpp"
 #include "anisodyn/interactions/pair_force_field.hpp"
 #include "anisodyn/interactions/rod_overlap_pairs.hpp"
@@ -51,10 +52,13 @@ class BdRunner : public run::ProductionClient {
   /// With the rod potential: the systematic torque on each particle at the frame's configuration,
   /// before any cap (spec 20 §6.3, Method III's T̄), as `systematic_torque`.
   std::vector<io::ParticleElement> frame_elements() const override;
+  /// Method II: the axes of the tagged rods every record_every steps.
+  void after_step(io::H5mdWriter& out, std::int64_t step, double time) override;
 
   BdSettings integrator_settings(const std::string& config_file) const;
   /// The rod–rod force field of protocol_.potential, or none.
   void build_rod_forces(const std::string& config_file);
+  void build_external_torque(const std::string& config_file);
   void finish_summary();
   /// Adds the interacting rod pairs of the current state to the P_d(x) histogram.
   void sample_pair_distances();
@@ -64,7 +68,8 @@ class BdRunner : public run::ProductionClient {
   BdProtocol protocol_;
   std::unique_ptr<PairForceField<RodOverlapPairs>> rod_forces_;
   std::unique_ptr<BdIntegrator> integrator_;
-  mutable BodyForces frame_forces_;  // the systematic forces at the last frame
+  mutable BodyForces frame_forces_;
+  std::optional<ExternalTorque> external_;  // the systematic forces at the last frame
   run::ProductionRunner production_;
   std::int64_t capped_forces_mark_ = 0, capped_torques_mark_ = 0;
   bool attributes_written_ = false;
