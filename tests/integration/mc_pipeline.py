@@ -19,7 +19,10 @@ import time
 import h5py
 import numpy as np
 
-bin_dir, tmp = sys.argv[1], sys.argv[2]
+bin_dir, tmp, source = sys.argv[1], sys.argv[2], sys.argv[3]
+sys.path.insert(0, os.path.join(source, "tests", "support"))
+from resume_checks import check_resumes, interrupted  # noqa: E402
+
 os.makedirs(tmp, exist_ok=True)
 os.chdir(tmp)
 for f in os.listdir("."):
@@ -57,57 +60,13 @@ summary = json.loads(r.stdout)
 print(f"uninterrupted run: {duration:.1f} s, final packing fraction {summary['final_packing_fraction']:.6f}")
 
 
-def interrupted_run(out, sig, delay):
-    p = subprocess.Popen([os.path.join(bin_dir, a) if i == 0 else a for i, a in enumerate(mc_args(out))],
-                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    time.sleep(delay)
-    p.send_signal(sig)
-    _, err = p.communicate()
-    return p.returncode, err
-
-
-def compare(a, b):
-    with h5py.File(a) as fa, h5py.File(b) as fb:
-        for key in ("particles/all/position/step", "particles/all/position/value", "particles/all/orientation/value", "particles/all/image/value",
-                    "particles/all/box/edges/value"):
-            assert np.array_equal(fa[key][...], fb[key][...]), f"{key} differs between {a} and {b}"
-        names = set(fa["observables"].keys())
-        assert names == set(fb["observables"].keys())
-        for n in names:
-            assert np.array_equal(fa[f"observables/{n}/value"][...], fb[f"observables/{n}/value"][...], equal_nan=True), n
-        return len(names)
-
-
-# SIGINT: checkpoint written, exit 130, no output; resuming completes the run identically.
-code, err = interrupted_run("sigint.h5", signal.SIGINT, min(1.0, duration / 3))
-assert code == 130, f"SIGINT: exit code {code}, expected 130 ({err})"
-assert os.path.exists("sigint.h5.checkpoint.h5") and not os.path.exists("sigint.h5"), "SIGINT must leave a checkpoint and no output"
-r = run(mc_args("sigint.h5"))
-assert r.returncode == 0, r.stderr
-assert json.loads(r.stdout) == summary, "the resumed run's summary differs from the uninterrupted run's"
-assert not os.path.exists("sigint.h5.checkpoint.h5"), "checkpoint must be removed after completion"
-n = compare("straight.h5", "sigint.h5")
-print(f"SIGINT after {min(1.0, duration / 3):.2f} s -> exit 130, resumed: identical ({n} observables compared)")
-
-# SIGKILL after at least one periodic checkpoint: resume from it.
-p = subprocess.Popen([os.path.join(bin_dir, a) if i == 0 else a for i, a in enumerate(mc_args("killed.h5"))],
-                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-deadline = time.time() + 60
-while not os.path.exists("killed.h5.checkpoint.h5") and time.time() < deadline and p.poll() is None:
-    time.sleep(0.01)
-time.sleep(0.05)
-p.kill()
-p.wait()
-assert os.path.exists("killed.h5.checkpoint.h5"), "no periodic checkpoint before SIGKILL"
-assert not os.path.exists("killed.h5")
-r = run(mc_args("killed.h5"))
-assert r.returncode == 0, r.stderr
-assert json.loads(r.stdout) == summary, "the resumed run's summary differs from the uninterrupted run's"
-compare("straight.h5", "killed.h5")
-print("SIGKILL after a periodic checkpoint, resumed: identical")
+full_args = lambda out: [os.path.join(bin_dir, a) if i == 0 else a for i, a in enumerate(mc_args(out))]
+for resumed in check_resumes(full_args, "mc", "straight.h5", duration, lambda cmd: subprocess.run(cmd, capture_output=True, text=True)):
+    assert json.loads(resumed) == summary, "the resumed run's summary differs from the uninterrupted run's"
+print("resumed runs print the uninterrupted run's summary")
 
 # A checkpoint from different parameters is refused with exit code 2.
-code, _ = interrupted_run("other.h5", signal.SIGINT, min(1.0, duration / 3))
+code, _ = interrupted(full_args("other.h5"), signal.SIGINT, min(1.0, duration / 3))
 assert code == 130
 r = subprocess.run([os.path.join(bin_dir, "anisodyn-mc"), "-q", "--config", "mc.json", "--set", "seed=10", "--input", "start.h5",
                     "--output", "other.h5"], capture_output=True, text=True)
