@@ -10,11 +10,7 @@ using namespace anisodyn;
 namespace {
 
 tool::Description description() {
-  tool::Description d;
-  d.role = tool::Role::Engine;
-  d.replica = true;
-  d.inputs = {"state", 1, 1, "the starting state (its last frame)"};
-  d.output = {"trajectory", "H5MD", "frames by the frames rules, observables every observe_every steps, the summary", nullptr};
+  tool::Description d = tool::engine_description("frames by the frames rules, observables every observe_every steps, the summary");
   d.parameters = {
       tool::seed_parameter(),
       tool::required("time_step", "number", "the time step Δt (τ in reduced units, s in SI)"),

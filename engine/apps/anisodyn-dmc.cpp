@@ -11,12 +11,7 @@ using namespace anisodyn;
 namespace {
 
 tool::Description description() {
-  tool::Description d;
-  d.role = tool::Role::Engine;
-  d.replica = true;
-  d.inputs = {"state", 1, 1, "the starting state (its last frame)"};
-  d.output = {"trajectory", "H5MD",
-              "frames by the frames rules (with per-particle accumulators), observables every observe_every cycles, the summary", nullptr};
+  tool::Description d = tool::engine_description("frames by the frames rules (with per-particle accumulators), observables every observe_every cycles, the summary");
   d.parameters = {
       tool::seed_parameter(),
       tool::required("time_step", "object", "{species: dt_MC}: the MC time step of each species (others follow by balance)"),

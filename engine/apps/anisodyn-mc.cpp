@@ -17,12 +17,7 @@ using namespace anisodyn;
 namespace {
 
 tool::Description description() {
-  tool::Description d;
-  d.role = tool::Role::Engine;
-  d.replica = true;
-  d.inputs = {"state", 1, 1, "the starting state (its last frame)"};
-  d.output = {"trajectory", "H5MD", "frames by the frames rules (always the final state), observables every observe_every cycles, the summary",
-              nullptr};
+  tool::Description d = tool::engine_description("frames by the frames rules (always the final state), observables every observe_every cycles, the summary");
   d.parameters = {
       tool::seed_parameter(),
       tool::optional("target_acceptance", "number", 0.35, "target acceptance of move-size tuning (only when a phase tunes)"),

@@ -2,8 +2,6 @@
 
 #include "anisodyn/run/step_unit.hpp"
 
-#include <algorithm>
-
 namespace anisodyn {
 
 namespace {
@@ -91,14 +89,9 @@ BdProtocol parse_bd_protocol(tool::ConfigNode& cfg) {
       e.particles.push_back(id.get<std::int64_t>());
     }
     e.torque_kT = ext->positive("torque_kT");
-    if (ext->has("axis")) {
-      const nlohmann::json& a = ext->value("axis");
-      if (!a.is_array() || a.size() != 3 || !std::all_of(a.begin(), a.end(), [](const nlohmann::json& v) { return v.is_number(); }))
-        ext->fail("axis", "expected three numbers");
-      e.axis = Vec3(a[0].get<double>(), a[1].get<double>(), a[2].get<double>());
-      if (!(e.axis.norm() > 0.0)) ext->fail("axis", "expected a non-zero direction");
-      e.axis.normalize();
-    }
+    e.axis = ext->vec3("axis", Vec3::UnitZ());
+    if (!(e.axis.norm() > 0.0)) ext->fail("axis", "expected a non-zero direction");
+    e.axis.normalize();
     e.confinement_kT = ext->non_negative("confinement_kT", 0.0);
     e.record_every = ext->positive_integer("record_every", 1);
     p.external_torque = e;

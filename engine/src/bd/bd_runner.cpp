@@ -62,8 +62,9 @@ std::vector<BdDiffusion> bd_diffusion(const State& state, const std::string& fil
 void apply_slender_body(State& state, const std::map<std::string, SlenderBodySpec>& slender_body, const BdUnits& units,
                         const std::string& file) {
   for (const auto& [name, spec] : slender_body) {
-    auto it = std::find_if(state.species.begin(), state.species.end(), [&](const Species& s) { return s.name == name; });
-    if (it == state.species.end()) throw InputError(file, spec.path, "unknown species '" + name + "': expected one of the input's species");
+    const int index = species_index(state.species, name);
+    if (index < 0) throw InputError(file, spec.path, "unknown species '" + name + "': expected one of the input's species");
+    const auto it = state.species.begin() + index;
     if (it->shape.kind != ShapeKind::Spherocylinder)
       throw InputError(file, spec.path, "expected a rod (spherocylinder) species for the slender-body formulas; '" + name + "' is not");
     const double metres = units.si ? units.length_m : 1.0;

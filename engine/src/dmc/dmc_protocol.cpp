@@ -116,11 +116,7 @@ DmcProtocol parse_dmc_protocol(tool::ConfigNode& cfg) {
 }
 
 void check_protocol_species(const DmcProtocol& p, const State& state, const std::string& file) {
-  auto index = [&](const std::string& name) {
-    for (std::size_t s = 0; s < state.species.size(); ++s)
-      if (state.species[s].name == name) return static_cast<int>(s);
-    return -1;
-  };
+  auto index = [&](const std::string& name) { return species_index(state.species, name); };
   std::string known;
   for (const auto& s : state.species) known += (known.empty() ? "" : ", ") + s.name;
   auto require = [&](const std::string& name, const std::string& path) {

@@ -40,11 +40,7 @@ run::ProductionSettings production_settings(const DmcProtocol& p) {
 constexpr double kTracerValidityLimit = 0.2;
 }  // namespace
 
-std::int64_t DmcRunner::species_index(const std::string& name) const {
-  for (std::size_t s = 0; s < state_.species.size(); ++s)
-    if (state_.species[s].name == name) return static_cast<std::int64_t>(s);
-  return -1;
-}
+std::int64_t DmcRunner::species_index(const std::string& name) const { return anisodyn::species_index(state_.species, name); }
 
 DmcRunner::DmcRunner(State& state, const DmcProtocol& protocol, const std::string& config_file, bool quiet)
     : state_(state),

@@ -4,14 +4,6 @@
 
 namespace anisodyn::io {
 
-namespace {
-int species_index(const SpeciesTable& species, const std::string& name) {
-  for (std::size_t s = 0; s < species.size(); ++s)
-    if (species[s].name == name) return static_cast<int>(s);
-  return -1;
-}
-}  // namespace
-
 DiffusionOverrides DiffusionOverrides::parse(tool::ConfigNode& cfg, const std::string& key) {
   DiffusionOverrides o;
   auto block = cfg.optional_object(key);

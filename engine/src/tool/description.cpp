@@ -18,6 +18,15 @@ Parameter seed_parameter() {
 
 nlohmann::json negligible_cost(const std::string& why) { return {{"kind", "negligible"}, {"why", why}}; }
 
+Description engine_description(const std::string& output_meaning) {
+  Description d;
+  d.role = Role::Engine;
+  d.replica = true;
+  d.inputs = {"state", 1, 1, "the starting state (its last frame)"};
+  d.output = {"trajectory", "H5MD", output_meaning, nullptr};
+  return d;
+}
+
 const char* role_name(Role role) {
   switch (role) {
     case Role::Builder: return "builder";

@@ -18,4 +18,11 @@ struct Species {
 
 using SpeciesTable = std::vector<Species>;
 
+/// Index of the species called `name`, or −1.
+inline int species_index(const SpeciesTable& species, const std::string& name) {
+  for (std::size_t s = 0; s < species.size(); ++s)
+    if (species[s].name == name) return static_cast<int>(s);
+  return -1;
+}
+
 }  // namespace anisodyn

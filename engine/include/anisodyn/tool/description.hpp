@@ -73,6 +73,10 @@ struct Description {
 /// {"kind": "negligible", "why": why}.
 nlohmann::json negligible_cost(const std::string& why);
 
+/// What every engine shares: role engine, --replica, one starting state as input, an H5MD
+/// trajectory as output (its contents in `output_meaning`); the caller adds parameters and cost.
+Description engine_description(const std::string& output_meaning);
+
 const char* role_name(Role role);
 
 }  // namespace anisodyn::tool
