@@ -133,6 +133,7 @@ bad = [
     ("SI without temperature", {**bd, "units": {"system": "SI", "length": 1e-6}}, "units.temperature"),
     ("temperature in reduced units", {**bd, "units": {"temperature": 300}}, "units.temperature"),
     ("zero time step", {**bd, "time_step": 0}, "time_step"),
+    ("caps for free rods", {k: v for k, v in {**bd, "caps": {"force": 1}}.items() if k != "potential"}, "caps"),
     ("slender body and species entry", {**bd, "species": {"rod": {"D_trans": [1, 1, 2]}}, "slender_body": {"rod": {"viscosity": 1}}},
      "slender_body.rod"),
     ("external torque on an unknown particle", {**bd, "external_torque": {"particles": [4000], "torque_kT": 10}},

@@ -96,6 +96,7 @@ BdProtocol parse_bd_protocol(tool::ConfigNode& cfg) {
     e.record_every = ext->positive_integer("record_every", 1);
     p.external_torque = e;
   }
+  cfg.reject_unless(p.potential || p.external_torque, "caps", "for free particles (no potential and no external torque: nothing to cap)");
   if (auto caps = cfg.optional_object("caps")) {
     p.force_cap = parse_cap(*caps, "force");
     p.torque_cap = parse_cap(*caps, "torque");
