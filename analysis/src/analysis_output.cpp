@@ -97,6 +97,11 @@ void write_scalars_csv(const std::vector<Scalar>& scalars, const std::string& pa
 }  // namespace
 
 void AnalysisOutput::write(bool csv) const {
+  std::vector<Table> tables = tables_;
+  for (auto& t : tables)
+    for (auto& c : t.columns) c.units = units_.express(c.units);
+  std::vector<Scalar> scalars = scalars_;
+  for (auto& s : scalars) s.units = units_.express(s.units);
   QuietHdf5 quiet;
   std::vector<tool::AtomicOutput> outputs;
   outputs.emplace_back(path_);
@@ -114,7 +119,7 @@ void AnalysisOutput::write(bool csv) const {
     w.string_dataset(f, "parameters", parameters_.dump(2));
     w.string_dataset(f, "provenance", provenance_.dump(2));
     std::set<std::string> names;
-    for (const auto& t : tables_) {
+    for (const auto& t : tables) {
       if (!names.insert(t.name).second || t.name == "scalars") throw RuntimeFailure("duplicate table name " + t.name);
       Handle g = w.group(f, t.name);
       w.string_attribute(g.get(), "definition", t.definition);
@@ -124,10 +129,10 @@ void AnalysisOutput::write(bool csv) const {
         w.string_attribute(ds.get(), "definition", c.definition);
       }
     }
-    if (!scalars_.empty()) {
+    if (!scalars.empty()) {
       Handle g = w.group(f, "scalars");
       w.string_attribute(g.get(), "definition", "scalar results: value and standard error");
-      for (const auto& s : scalars_) {
+      for (const auto& s : scalars) {
         Handle ds = w.double_dataset(g.get(), s.name, {s.value, s.error});
         w.string_attribute(ds.get(), "units", s.units);
         w.string_attribute(ds.get(), "definition", s.definition);
@@ -137,13 +142,13 @@ void AnalysisOutput::write(bool csv) const {
     if (!file.close()) throw RuntimeFailure("cannot close " + outputs.back().partial_path());
   }
   if (csv) {
-    for (const auto& t : tables_) {
+    for (const auto& t : tables) {
       outputs.emplace_back(csv_path(t.name));
       write_table_csv(t, outputs.back().partial_path(), window_);
     }
-    if (!scalars_.empty()) {
+    if (!scalars.empty()) {
       outputs.emplace_back(csv_path("scalars"));
-      write_scalars_csv(scalars_, outputs.back().partial_path());
+      write_scalars_csv(scalars, outputs.back().partial_path());
     }
   }
   for (auto& o : outputs) o.commit();

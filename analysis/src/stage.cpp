@@ -25,6 +25,7 @@ std::vector<double> StageRun::each_replica(const TrajectoryNeeds& needs,
       inputs, windowed,
       [&](const Trajectory& t, std::size_t k) {
         report_replica(k, t.path);
+        if (k == 0) out.set_unit_system(t.units);
         fn(t, k);
       },
       time_tolerance, &selected);

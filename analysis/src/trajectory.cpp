@@ -152,6 +152,7 @@ Trajectory load_frames(const io::H5mdReader& r, const std::vector<double>& all_t
   t.species_table = r.species();
   read_identities(t, r, frames);
   t.parameters = r.parameters();
+  t.units = tool::unit_system_of_run(t.parameters);
   std::size_t width = 0;
   if (needs.positions) {
     t.position = r.read_element_frames("position", width, frames);
@@ -230,6 +231,8 @@ void check_replica_identity(const Trajectory& a, const Trajectory& b, bool same_
   if (a.species_table.size() != b.species_table.size()) replica_mismatch(a, b, "the species tables differ");
   for (std::size_t s = 0; s < a.species_table.size(); ++s)
     if (a.species_table[s].name != b.species_table[s].name) replica_mismatch(a, b, "the species tables differ");
+  if (a.units.to_json() != b.units.to_json())
+    replica_mismatch(a, b, "the runs' unit systems differ (" + b.units.to_json().dump() + ", the first replica's " + a.units.to_json().dump() + ")");
   if (same_frames && a.frames != b.frames)
     replica_mismatch(a, b, std::to_string(b.frames) + " frames, the first replica has " + std::to_string(a.frames));
 }
@@ -272,6 +275,7 @@ Trajectory replica_header(const std::string& path) {
   t.time = r.frame_times();
   t.time.resize(std::min(t.time.size(), t.frames));
   t.species_table = r.species();
+  t.units = tool::unit_system_of_run(r.parameters());
   if (t.frames > 0) {
     const State s = r.read_frame(0);
     t.species.assign(s.particles.species.begin(), s.particles.species.end());

@@ -112,6 +112,13 @@ d = json.loads(r.stdout)["species"][0]
 assert abs(d["D_parallel"] - 3.0603) < 5e-5 and abs(d["D_perpendicular"] - 1.5302) < 5e-5 and abs(d["D_rotation"] - 23.711) < 5e-4, d
 with h5py.File("si.h5") as f:
     assert json.loads(f["parameters/provenance"][()])["units"]["system"] == "SI"
+# an analysis of an SI run labels its results in the run's units (µm, s), not length and tau
+json.dump({"species": "rod"}, open("msd.json", "w"))
+r = run([tool("anisodyn-msd"), "-q", "--config", "msd.json", "--input", "si.h5", "--output", "si_msd.h5"])
+assert r.returncode == 0, r.stderr
+with h5py.File("si_msd.h5") as f:
+    units = {k: f["scalars"][k].attrs["units"] for k in f["scalars"]}
+    assert units["D_tot_rod"] == "um^2/s" and f["msd_rod/time"].attrs["units"] == "s", units
 print(f"SI slender-body rods: D_par {d['D_parallel']:.5f} µm²/s, D_perp {d['D_perpendicular']:.5f} µm²/s, D_r {d['D_rotation']:.4f} 1/s")
 
 # Method II (spec 20 §6.2): a torque of 10 kT about z on rods 0 and 1, confined to the xy plane.

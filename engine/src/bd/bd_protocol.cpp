@@ -5,9 +5,6 @@
 namespace anisodyn {
 
 namespace {
-/// Boltzmann's constant, J/K (exact in the 2019 SI).
-constexpr double kBoltzmann = 1.380649e-23;
-
 BdUnits parse_units(tool::ConfigNode& cfg) {
   BdUnits u;
   auto node = cfg.optional_object("units");
@@ -37,14 +34,6 @@ BdCap parse_cap(tool::ConfigNode& caps, const std::string& key) {
   return c;
 }
 }  // namespace
-
-double BdUnits::kT() const { return si ? kBoltzmann * temperature_K : 1.0; }
-
-nlohmann::json BdUnits::to_json() const {
-  if (!si) return {{"system", "reduced"}, {"length", "length unit of the input"}, {"time", "tau"}, {"energy", "kT"}};
-  return {{"system", "SI"}, {"length", std::to_string(length_m) + " m"}, {"length_m", length_m}, {"time", "s"}, {"energy", "J"},
-          {"temperature_K", temperature_K}, {"kT_J", kT()}};
-}
 
 BdProtocol parse_bd_protocol(tool::ConfigNode& cfg) {
   BdProtocol p;

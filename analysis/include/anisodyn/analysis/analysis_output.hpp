@@ -19,6 +19,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "anisodyn/tool/unit_system.hpp"
+
 namespace anisodyn::analysis {
 
 /// A table column from each row of a per-replica (or per-item) result: `get` is a data member
@@ -68,6 +70,9 @@ class AnalysisOutput {
   /// The time window the stage analysed (frame_window.hpp record), written as the root attribute
   /// `window` and as a comment line heading each CSV table.
   void set_window(nlohmann::json record) { window_ = std::move(record); }
+  /// The unit system of the analysed runs: units are given symbolically (tau, length, sigma) and
+  /// written in this system (tool/unit_system.hpp). Reduced unless set.
+  void set_unit_system(tool::UnitSystem units) { units_ = units; }
   const std::vector<Table>& tables() const { return tables_; }
   const std::vector<Scalar>& scalars() const { return scalars_; }
 
@@ -81,6 +86,7 @@ class AnalysisOutput {
   nlohmann::json parameters_, provenance_, window_;
   std::vector<Table> tables_;
   std::vector<Scalar> scalars_;
+  tool::UnitSystem units_;
 };
 
 }  // namespace anisodyn::analysis

@@ -17,6 +17,7 @@
 #include "anisodyn/analysis/frame_window.hpp"
 #include "anisodyn/core/types.hpp"
 #include "anisodyn/system/species.hpp"
+#include "anisodyn/tool/unit_system.hpp"
 
 namespace anisodyn::analysis {
 
@@ -55,6 +56,7 @@ struct Trajectory {
   std::map<std::string, std::pair<std::size_t, std::vector<double>>> elements;  // name → (width, [F × N × width])
   std::map<std::string, ObservableSeries> observables;
   nlohmann::json parameters;
+  tool::UnitSystem units;  // the run's (its parameters' "units"; reduced if absent)
 
   Vec3 pos(std::size_t f, std::size_t i) const {
     const double* p = &position[3 * (f * particles + i)];

@@ -23,18 +23,12 @@
 #include "anisodyn/run/schedule.hpp"
 #include "anisodyn/system/state.hpp"
 #include "anisodyn/tool/json_config.hpp"
+#include "anisodyn/tool/unit_system.hpp"
 
 namespace anisodyn {
 
-/// The unit system of a BD run, recorded in the output.
-struct BdUnits {
-  bool si = false;
-  double length_m = 1.0;       // SI: metres per length unit of the input
-  double temperature_K = 0.0;  // SI only
-  /// kT in the run's energy unit: 1 (reduced) or k_B T in J (SI).
-  double kT() const;
-  nlohmann::json to_json() const;
-};
+/// The run's unit system (tool/unit_system.hpp): reduced or SI.
+using BdUnits = tool::UnitSystem;
 
 /// A cap on the norm of a rod's systematic force or torque (spec 20 §4.5).
 struct BdCap {
