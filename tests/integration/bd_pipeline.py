@@ -133,7 +133,38 @@ with h5py.File("m2.h5") as f:
     assert axes.shape == (200, 6), axes.shape
 print(f"Method II run: tagged axes recorded {axes.shape}")
 
+# Spheres with the pseudo-hard Mie core and a pulled tracer (the cross-engine check with DMC,
+# tests/integration/validation_bd_dmc_hs.py): 200 spheres at eta = 0.2 plus a tracer pulled at
+# Pe = 1 along z; no caps (null). The tracer's unwrapped centre is recorded for anisodyn-microrheology.
+spheres = {"seed": 5, "placement": "random",
+           "species": [{"name": "hs", "shape": {"type": "sphere", "diameter": 1.0}, "D_trans": [0.1, 0.1, 0.1]},
+                       {"name": "tracer", "shape": {"type": "sphere", "diameter": 1.0}, "D_trans": [0.1, 0.1, 0.1]}],
+           "composition": [{"species": "hs", "count": 200}, {"species": "tracer", "count": 1}], "box": {"packing_fraction": 0.2}}
+json.dump(spheres, open("spheres.json", "w"))
+r = run([tool("anisodyn-config"), "-q", "--config", "spheres.json", "--output", "spheres.h5"])
+assert r.returncode == 0, r.stderr
+hs = {"seed": 6, "time_step": 1e-5, "steps": 4000, "observe_every": 1000, "caps": {"force": None, "torque": None},
+      "potential": {"type": "mie", "sigma": "barker_henderson"}, "tracer": {"species": "tracer", "pe": 1, "record_every": 100}}
+json.dump(hs, open("hs.json", "w"))
+r = run([tool("anisodyn-bd"), "-q", "--config", "hs.json", "--input", "spheres.h5", "--output", "hs.h5"])
+assert r.returncode == 0, r.stderr
+s = json.loads(r.stdout)
+assert s["caps"] == {"force": None, "torque": None}, s["caps"]
+assert s["potential"]["type"] == "mie" and s["potential"]["exponents"] == [50, 49], s["potential"]
+assert abs(s["potential"]["sigma"]["hs"] * s["potential"]["barker_henderson_diameter_over_sigma"] - 1.0) < 1e-12, s["potential"]
+assert s["tracer"]["beta_force"] == 2.0, s["tracer"]  # Pe / a with a = 1/2
+with h5py.File("hs.h5") as f:
+    obs = f["observables"]
+    path = obs["tracer_position/value"][...]
+    assert path.shape == (40, 3) and obs["tracer_position"].attrs["definition"], path.shape
+    assert obs["potential_energy/value"][-1] > 0, "the Mie cores of a fluid at eta = 0.2 touch"
+print(f"Mie spheres + pulled tracer: sigma {s['potential']['sigma']['hs']:.6f}, tracer moved {path[-1, 2] - path[0, 2]:+.4f} along z")
+
 bad = [
+    ("Mie key for the overlap volume", {**bd, "potential": {"type": "overlap_volume", "exponent": 50}}, "potential.exponent"),
+    ("overlap-volume key for Mie", {**bd, "potential": {"type": "mie", "hardness": 1}}, "potential.hardness"),
+    ("Mie between rods", {**bd, "potential": {"type": "mie", "species": ["rod"]}}, "potential.species[0]"),
+    ("tracer species with 400 particles", {**bd, "tracer": {"species": "rod", "pe": 1}}, "tracer.species"),
     ("negative D_trans", {**bd, "species": {"rod": {"D_trans": [-1, 1, 2]}}}, "species.rod.D_trans"),
     ("unknown key", {**bd, "tme_step": 1}, "tme_step"),
     ("schedule", {**bd, "schedule": {"segments": [{"field": "on", "steps": 10}]}}, "schedule"),

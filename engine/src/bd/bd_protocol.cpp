@@ -21,11 +21,13 @@ BdUnits parse_units(tool::ConfigNode& cfg) {
 
 BdCap parse_cap(tool::ConfigNode& caps, const std::string& key) {
   BdCap c;
-  if (!caps.has(key)) return c;
-  const nlohmann::json& v = caps.value(key);
-  if (v.is_null()) {
-    c.kind = BdCap::Kind::None;
-  } else if (v.is_string()) {
+  // null means "no cap", which ConfigNode::has reads as an absent key (and marks as read)
+  const bool given = caps.raw().contains(key);
+  if (!caps.has(key)) {
+    if (given) c.kind = BdCap::Kind::None;
+    return c;
+  }
+  if (caps.value(key).is_string()) {
     caps.choice(key, {"step_bound"});
   } else {
     c.kind = BdCap::Kind::Value;
@@ -33,6 +35,32 @@ BdCap parse_cap(tool::ConfigNode& caps, const std::string& key) {
   }
   return c;
 }
+
+OverlapVolumeSpec parse_overlap_volume(tool::ConfigNode& pot) {
+  for (const char* key : {"exponent", "epsilon_kT", "sigma"}) pot.reject_unless(false, key, "for the overlap-volume potential (a Mie key)");
+  OverlapVolumeSpec spec;
+  spec.species = pot.string("species", "");
+  if (pot.has("hardness")) spec.hardness = pot.positive("hardness");
+  spec.interior_only = pot.choice("finite_length", {"segment_distance", "interior_only"}, "segment_distance") == "interior_only";
+  if (pot.has("skin")) spec.skin = pot.positive("skin");
+  return spec;
+}
+
+MieSpec parse_mie(tool::ConfigNode& pot) {
+  for (const char* key : {"hardness", "finite_length"}) pot.reject_unless(false, key, "for the Mie potential (an overlap-volume key)");
+  MieSpec spec;
+  if (pot.has("species")) {
+    spec.species = pot.strings("species");
+    if (spec.species.empty()) pot.fail("species", "expected at least one sphere species");
+  }
+  spec.exponent = pot.number("exponent", spec.exponent);
+  if (!(spec.exponent >= 12.0)) pot.fail("exponent", "expected a repulsive exponent n ≥ 12 (the attractive one is n − 1)");
+  spec.epsilon_kT = pot.positive("epsilon_kT", spec.epsilon_kT);
+  spec.barker_henderson = pot.choice("sigma", {"diameter", "barker_henderson"}, "diameter") == "barker_henderson";
+  if (pot.has("skin")) spec.skin = pot.positive("skin");
+  return spec;
+}
+
 }  // namespace
 
 BdProtocol parse_bd_protocol(tool::ConfigNode& cfg) {
@@ -61,13 +89,10 @@ BdProtocol parse_bd_protocol(tool::ConfigNode& cfg) {
     }
   }
   if (auto pot = cfg.optional_object("potential")) {
-    pot->choice("type", {"overlap_volume"});
-    OverlapVolumeSpec spec;
-    spec.species = pot->string("species", "");
-    if (pot->has("hardness")) spec.hardness = pot->positive("hardness");
-    spec.interior_only = pot->choice("finite_length", {"segment_distance", "interior_only"}, "segment_distance") == "interior_only";
-    if (pot->has("skin")) spec.skin = pot->positive("skin");
-    p.potential = spec;
+    if (pot->choice("type", {"overlap_volume", "mie"}) == "overlap_volume")
+      p.potential = parse_overlap_volume(*pot);
+    else
+      p.sphere_potential = parse_mie(*pot);
   }
   if (auto ext = cfg.optional_object("external_torque")) {
     ExternalTorqueSpec e;
@@ -85,7 +110,9 @@ BdProtocol parse_bd_protocol(tool::ConfigNode& cfg) {
     e.record_every = ext->positive_integer("record_every", 1);
     p.external_torque = e;
   }
-  cfg.reject_unless(p.potential || p.external_torque, "caps", "for free particles (no potential and no external torque: nothing to cap)");
+  if (auto t = cfg.optional_object("tracer")) p.tracer = run::parse_pulled_tracer(*t);
+  cfg.reject_unless(p.potential || p.sphere_potential || p.external_torque || p.tracer, "caps",
+                    "for free particles (no potential, external torque or pulled tracer: nothing to cap)");
   if (auto caps = cfg.optional_object("caps")) {
     p.force_cap = parse_cap(*caps, "force");
     p.torque_cap = parse_cap(*caps, "torque");

@@ -114,13 +114,11 @@ BdRunner::BdRunner(State& state, const BdProtocol& protocol, const std::string& 
   apply_slender_body(state_, protocol_.slender_body, protocol_.units, config_file);
   const BdSettings settings = integrator_settings(config_file);
   build_rod_forces(config_file);
+  build_sphere_forces(config_file);
   build_external_torque(config_file);
+  build_tracer(config_file);
   ForceField forces;
-  if (rod_forces_ || external_)
-    forces = [this](const State& s, BodyForces& out) {
-      if (rod_forces_) (*rod_forces_)(s, out);
-      if (external_) add_external_torque(*external_, s, out);
-    };
+  if (rod_forces_ || sphere_forces_ || external_ || tracer_) forces = [this](const State& s, BodyForces& out) { add_systematic_forces(s, out); };
   integrator_ = std::make_unique<BdIntegrator>(settings, forces);
   summary_["units"] = protocol_.units.to_json();
   summary_["species"] = nlohmann::json::array();
@@ -166,6 +164,63 @@ void BdRunner::build_rod_forces(const std::string& config_file) {
                            {"hardness", ov.hardness},
                            {"hardness_kT_per_D3", ov.hardness * D * D * D / kT},
                            {"finite_length", spec.interior_only ? "interior_only" : "segment_distance"}};
+}
+
+void BdRunner::build_sphere_forces(const std::string& config_file) {
+  if (!protocol_.sphere_potential) return;
+  const MieSpec& spec = *protocol_.sphere_potential;
+  const double kT = protocol_.units.kT();
+  MiePairs pairs;
+  pairs.core = MieCore{spec.exponent, spec.exponent - 1.0, spec.epsilon_kT * kT};
+  // σ of each species: its diameter, or the σ whose Barker–Henderson diameter is the diameter.
+  const double bh = barker_henderson_ratio(pairs.core, kT);
+  const double scale = spec.barker_henderson ? 1.0 / bh : 1.0;
+  pairs.sigma.assign(state_.species.size(), 0.0);
+  for (std::size_t k = 0; k < spec.species.size(); ++k) {
+    const int s = species_index(state_.species, spec.species[k]);
+    const std::string path = spec.path + ".species[" + std::to_string(k) + "]";
+    if (s < 0) throw InputError(config_file, path, "unknown species '" + spec.species[k] + "'");
+    if (state_.species[static_cast<std::size_t>(s)].shape.kind != ShapeKind::Sphere)
+      throw InputError(config_file, path, "expected a sphere species: the Mie core acts between spheres");
+  }
+  nlohmann::json sigmas = nlohmann::json::object();
+  double largest = 0.0;
+  for (std::size_t s = 0; s < state_.species.size(); ++s) {
+    const Species& sp = state_.species[s];
+    const bool named = spec.species.empty() ? sp.shape.kind == ShapeKind::Sphere
+                                            : std::find(spec.species.begin(), spec.species.end(), sp.name) != spec.species.end();
+    if (!named) continue;
+    pairs.sigma[s] = sp.shape.diameter * scale;
+    sigmas[sp.name] = pairs.sigma[s];
+    largest = std::max(largest, sp.shape.diameter);
+  }
+  if (largest == 0.0) throw InputError(config_file, spec.path + ".type", "expected sphere species in the input for the Mie potential");
+  const auto ns = static_cast<int>(state_.species.size());
+  const std::vector<double> cutoffs = pairs.cutoffs();
+  sphere_forces_ = std::make_unique<PairForceField<MiePairs>>(std::move(pairs), cutoffs, ns, spec.skin.value_or(0.1 * largest));
+  summary_["potential"] = {{"type", "mie"},
+                           {"exponents", {spec.exponent, spec.exponent - 1.0}},
+                           {"epsilon_kT", spec.epsilon_kT},
+                           {"sigma", sigmas},
+                           {"sigma_rule", spec.barker_henderson ? "barker_henderson" : "diameter"},
+                           {"barker_henderson_diameter_over_sigma", bh}};
+}
+
+void BdRunner::build_tracer(const std::string& config_file) {
+  if (!protocol_.tracer) return;
+  const std::size_t i = run::find_pulled_tracer(*protocol_.tracer, state_, config_file);
+  const double beta_force = run::pulled_tracer_beta_force(*protocol_.tracer, state_, i);
+  tracer_ = i;
+  tracer_force_ = beta_force * protocol_.units.kT() * Vec3::Unit(protocol_.tracer->axis);
+  summary_["tracer"] = {{"species", protocol_.tracer->species}, {"pe", protocol_.tracer->peclet}, {"beta_force", beta_force},
+                        {"axis", std::string(1, static_cast<char>('x' + protocol_.tracer->axis))}};
+}
+
+void BdRunner::add_systematic_forces(const State& s, BodyForces& out) {
+  if (rod_forces_) (*rod_forces_)(s, out);
+  if (sphere_forces_) (*sphere_forces_)(s, out);
+  if (external_) add_external_torque(*external_, s, out);
+  if (tracer_) out.force[*tracer_] += tracer_force_;
 }
 
 void BdRunner::sample_pair_distances() {
@@ -238,6 +293,10 @@ void BdRunner::build_external_torque(const std::string& config_file) {
 }
 
 void BdRunner::after_step(io::H5mdWriter& out, std::int64_t step, double time) {
+  if (tracer_ && step % protocol_.tracer->record_every == 0) {
+    run::record_tracer_position(out, state_, *tracer_, step, time);
+    if (step == protocol_.tracer->record_every) run::describe_tracer_position(out);
+  }
   if (!external_ || step % protocol_.external_torque->record_every != 0) return;
   std::vector<double> axes;
   for (const std::size_t i : external_->particles) {

@@ -11,15 +11,6 @@ namespace anisodyn {
 
 namespace {
 
-int parse_axis_letter(tool::ConfigNode& node, const std::string& key, const std::string& letters, int fallback) {
-  if (!node.has(key)) return fallback;
-  const std::string v = node.string(key);
-  const auto pos = letters.find(v);
-  if (v.size() != 1 || pos == std::string::npos)
-    node.fail(key, std::string("expected one of ") + letters[0] + ", " + letters[1] + ", " + letters[2]);
-  return static_cast<int>(pos);
-}
-
 DmcMoveOptions parse_moves(std::optional<tool::ConfigNode> node) {
   DmcMoveOptions m;
   if (!node) return m;
@@ -90,10 +81,7 @@ DmcProtocol parse_dmc_protocol(tool::ConfigNode& cfg) {
 
   if (auto t = cfg.optional_object("tracer")) {
     TracerSettings ts;
-    ts.species = t->string("species");
-    ts.peclet = t->number("pe");
-    if (ts.peclet < 0.0) t->fail("pe", "expected a Péclet number ≥ 0");
-    ts.axis = parse_axis_letter(*t, "axis", "xyz", 2);
+    static_cast<run::PulledTracerSpec&>(ts) = run::parse_pulled_tracer(*t);
     if (t->has("a0")) {
       const auto& v = t->raw().at("a0");
       if (v.is_number()) {
@@ -104,7 +92,6 @@ DmcProtocol parse_dmc_protocol(tool::ConfigNode& cfg) {
         ts.a0 = t->choice("a0", {"overlap_pass", "one"}) == "one" ? TracerBathAcceptance::One : TracerBathAcceptance::OverlapPass;
       }
     }
-    ts.record_every = t->positive_integer("record_every", 1);
     p.tracer = ts;
   }
 
@@ -148,15 +135,9 @@ void check_protocol_species(const DmcProtocol& p, const State& state, const std:
     has_effect_nowhere(p.preliminary_key, "on an input with a single species and no pulled tracer (there is nothing to balance)");
   if (p.tracer) {
     require(p.tracer->species, "tracer.species");
-    const int s = index(p.tracer->species);
-    std::size_t count = 0;
-    for (auto sp : state.particles.species) count += sp == s ? 1 : 0;
-    if (count != 1)
-      throw InputError(file, "tracer.species", "expected a species with exactly one particle (the pulled tracer); '" +
-                                                   p.tracer->species + "' has " + std::to_string(count));
-    if (state.species[static_cast<std::size_t>(s)].shape.is_anisotropic())
-      throw InputError(file, "tracer.species", "expected a sphere: the pulled tracer does not rotate");
+    run::find_pulled_tracer(*p.tracer, state, file);
   }
+
 }
 
 }  // namespace anisodyn

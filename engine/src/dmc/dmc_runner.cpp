@@ -76,11 +76,10 @@ void DmcRunner::configure_species() {
   if (protocol_.tracer) {
     tracer_species_ = static_cast<int>(species_index(protocol_.tracer->species));
     PulledTracer t;
-    for (std::size_t i = 0; i < state_.particles.size(); ++i)
-      if (state_.particles.species[i] == tracer_species_) t.particle = static_cast<std::int32_t>(i);
+    const std::size_t particle = run::find_pulled_tracer(*protocol_.tracer, state_, config_file_);
+    t.particle = static_cast<std::int32_t>(particle);
     t.axis = protocol_.tracer->axis;
-    // βF = Pe / a with a the tracer's radius (spec 10 §4.5).
-    t.beta_force = protocol_.tracer->peclet / (0.5 * state_.species[static_cast<std::size_t>(tracer_species_)].shape.diameter);
+    t.beta_force = run::pulled_tracer_beta_force(*protocol_.tracer, state_, particle);
     engine_.set_tracer(t);
   }
   int reference = 0;
@@ -258,9 +257,7 @@ double DmcRunner::advance() {
 
 void DmcRunner::after_step(io::H5mdWriter& out, std::int64_t step, double time) {
   if (!engine_.tracer().active() || step % protocol_.tracer->record_every != 0) return;
-  const auto i = static_cast<std::size_t>(engine_.tracer().particle);
-  const Vec3 r = state_.box.unwrap(state_.particles.position(i), state_.particles.image(i));
-  out.append_observable("tracer_position", step, time, std::vector<double>{r.x(), r.y(), r.z()});
+  run::record_tracer_position(out, state_, static_cast<std::size_t>(engine_.tracer().particle), step, time);
 }
 
 void DmcRunner::observe(io::H5mdWriter& out, std::int64_t step, double t) {
@@ -301,8 +298,7 @@ void DmcRunner::observe(io::H5mdWriter& out, std::int64_t step, double t) {
     for (std::size_t s = 0; s < ns; ++s)
       if (state_.species[s].shape.is_anisotropic())
         attr("order_" + state_.species[s].name, "1", "uniaxial order parameters U_T, U_W, U_L (largest Q-tensor eigenvalue per body axis)");
-    if (engine_.tracer().active())
-      attr("tracer_position", "length unit of the study", "unwrapped centre of the pulled tracer");
+    if (engine_.tracer().active()) run::describe_tracer_position(out);
     attributes_written_ = true;
   }
   std::fill(window_.begin(), window_.end(), TrialCounts{});

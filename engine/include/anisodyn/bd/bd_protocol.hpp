@@ -6,7 +6,10 @@
 //    "slender_body": {"rod": {"viscosity": 1e-3, "diameter": 0.0148}},   (bd/slender_body.hpp; diameter optional)
 //    "frames": {...}, "observe_every": 100,                                           (run/frame_rules.hpp)
 //    "potential": {"type": "overlap_volume", "species": "rod", "hardness": 17.71, "finite_length":
-//                  "segment_distance" | "interior_only", "skin": 0.04},                       (spec 20 §4)
+//                  "segment_distance" | "interior_only", "skin": 0.04}                        (spec 20 §4)
+//               | {"type": "mie", "species": ["hs"], "exponent": 50, "epsilon_kT": 1,
+//                  "sigma": "diameter" | "barker_henderson", "skin": 0.1},        (interactions/mie_pairs.hpp)
+//    "tracer": {"species": "tracer", "pe": 1, "axis": "z", "record_every": 10},   (run/pulled_tracer.hpp)
 //    "external_torque": {"particles": [0], "torque_kT": 10, "axis": [0, 0, 1], "confinement_kT": 100,
 //                        "record_every": 10},                                             (spec 20 §6.2)
 //    "caps": {"force": "step_bound" | number | null, "torque": "step_bound" | number | null}}
@@ -20,6 +23,7 @@
 
 #include "anisodyn/io/diffusion_overrides.hpp"
 #include "anisodyn/run/frame_rules.hpp"
+#include "anisodyn/run/pulled_tracer.hpp"
 #include "anisodyn/run/schedule.hpp"
 #include "anisodyn/system/state.hpp"
 #include "anisodyn/tool/json_config.hpp"
@@ -52,6 +56,16 @@ struct OverlapVolumeSpec {
   std::string path = "potential";
 };
 
+/// The pseudo-hard sphere core between spheres (interactions/mie_pairs.hpp); absent: free spheres.
+struct MieSpec {
+  std::vector<std::string> species;  // the interacting sphere species; empty: every sphere species
+  double exponent = 50.0;            // n; the attractive exponent is n − 1
+  double epsilon_kT = 1.0;           // βε
+  bool barker_henderson = false;     // σ such that the Barker–Henderson diameter is the sphere's diameter
+  std::optional<double> skin;        // Verlet-list skin; default a tenth of the largest diameter
+  std::string path = "potential";
+};
+
 /// Method II (spec 20 §6.2): a constant torque on tagged rods, confined to the plane ⊥ the torque.
 struct ExternalTorqueSpec {
   std::vector<std::int64_t> particles;  // ids of the tagged rods
@@ -71,8 +85,10 @@ struct BdProtocol {
   BdUnits units;
   io::DiffusionOverrides diffusion;
   std::map<std::string, SlenderBodySpec> slender_body;
-  std::optional<OverlapVolumeSpec> potential;
+  std::optional<OverlapVolumeSpec> potential;   // rods
+  std::optional<MieSpec> sphere_potential;      // spheres
   std::optional<ExternalTorqueSpec> external_torque;
+  std::optional<run::PulledTracerSpec> tracer;
   BdCap force_cap, torque_cap;
 };
 

@@ -15,6 +15,7 @@
 #include "anisodyn/bd/bd_integrator.hpp"
 #include "anisodyn/bd/external_torque.hpp"
 #include "anisodyn/bd/bd_protocol.hpp"
+#include "anisodyn/interactions/mie_pairs.hpp"
 #include "anisodyn/interactions/pair_force_field.hpp"
 #include "anisodyn/interactions/rod_overlap_pairs.hpp"
 #include "anisodyn/io/h5md.hpp"
@@ -52,13 +53,18 @@ class BdRunner : public run::ProductionClient {
   /// With the rod potential: the systematic torque on each particle at the frame's configuration,
   /// before any cap (spec 20 §6.3, Method III's T̄), as `systematic_torque`.
   std::vector<io::ParticleElement> frame_elements() const override;
-  /// Method II: the axes of the tagged rods every record_every steps.
+  /// Method II: the axes of the tagged rods every record_every steps; the pulled tracer's position.
   void after_step(io::H5mdWriter& out, std::int64_t step, double time) override;
 
   BdSettings integrator_settings(const std::string& config_file) const;
   /// The rod–rod force field of protocol_.potential, or none.
   void build_rod_forces(const std::string& config_file);
+  /// The sphere–sphere Mie cores of protocol_.sphere_potential, or none.
+  void build_sphere_forces(const std::string& config_file);
   void build_external_torque(const std::string& config_file);
+  void build_tracer(const std::string& config_file);
+  /// Every systematic force and torque of the state (potentials, external torque, tracer force).
+  void add_systematic_forces(const State& s, BodyForces& out);
   void finish_summary();
   /// Adds the interacting rod pairs of the current state to the P_d(x) histogram.
   void sample_pair_distances();
@@ -67,9 +73,12 @@ class BdRunner : public run::ProductionClient {
   State& state_;
   BdProtocol protocol_;
   std::unique_ptr<PairForceField<RodOverlapPairs>> rod_forces_;
+  std::unique_ptr<PairForceField<MiePairs>> sphere_forces_;
   std::unique_ptr<BdIntegrator> integrator_;
   mutable BodyForces frame_forces_;
-  std::optional<ExternalTorque> external_;  // the systematic forces at the last frame
+  std::optional<ExternalTorque> external_;
+  std::optional<std::size_t> tracer_;  // the pulled tracer's particle
+  Vec3 tracer_force_ = Vec3::Zero();
   run::ProductionRunner production_;
   std::int64_t capped_forces_mark_ = 0, capped_torques_mark_ = 0;
   bool attributes_written_ = false;

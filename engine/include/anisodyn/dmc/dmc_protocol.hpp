@@ -13,18 +13,16 @@
 #include "anisodyn/io/diffusion_overrides.hpp"
 #include "anisodyn/run/field_config.hpp"
 #include "anisodyn/run/frame_rules.hpp"
+#include "anisodyn/run/pulled_tracer.hpp"
 #include "anisodyn/run/schedule.hpp"
 #include "anisodyn/tool/json_config.hpp"
 
 namespace anisodyn {
 
-struct TracerSettings {
-  std::string species;
-  double peclet = 0.0;
-  int axis = 2;
+/// The pulled tracer (run/pulled_tracer.hpp) with DMC's choice of the bath acceptance A_0.
+struct TracerSettings : run::PulledTracerSpec {
   TracerBathAcceptance a0 = TracerBathAcceptance::OverlapPass;
   double a0_value = 1.0;
-  std::int64_t record_every = 1;
 };
 
 struct DmcProtocol {

@@ -1,0 +1,1 @@
+anisodyn_add_script_test(validation_bd_dmc_hs validation_bd_dmc_hs.py SLOW)
