@@ -27,7 +27,9 @@ SelectedSpecies rod_species(const StageRun& run, const std::string& requested) {
 
 void check_potential_species(const Trajectory& t, const SelectedSpecies& sp, const std::string& config_file) {
   const auto& p = t.parameters;
-  if (!p.is_object() || !p.contains("potential") || !p["potential"].is_object() || !p["potential"].contains("species")) return;
+  if (!p.is_object() || !p.contains("potential") || !p["potential"].is_object() || !p["potential"].contains("species") ||
+      !p["potential"]["species"].is_string())
+    return;
   const std::string potential = p["potential"]["species"].get<std::string>();
   if (potential != sp.name)
     throw InputError(config_file, "species", "the histogram of " + t.path + " counts the pairs of species '" + potential + "' (its potential.species), not '" + sp.name + "'");
