@@ -1,0 +1,1 @@
+anisodyn_add_script_test(bd_rod_stages bd_rod_stages.py)
