@@ -4,6 +4,7 @@
 // against the reconstructed ⟨û(t)·û(0)⟩.
 #include <cstdio>
 
+#include "anisodyn/analysis/bd_caps.hpp"
 #include "anisodyn/analysis/free_rotation.hpp"
 #include "anisodyn/analysis/per_species_stage.hpp"
 #include "anisodyn/analysis/restoring_torque.hpp"
@@ -82,7 +83,7 @@ int main(int argc, char** argv) {
     TrajectoryNeeds needs;
     needs.orientations = true;
     needs.elements = {kSystematicTorque};
-    needs.observables = {"capped"};
+    needs.observables = {kCappedObservable};
     needs.min_frames = 2;  // one lag
     run_per_species(
         run, {settings.species, SpeciesScope::Oriented}, needs,

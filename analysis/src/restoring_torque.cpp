@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "anisodyn/analysis/bd_caps.hpp"
 #include "anisodyn/core/error.hpp"
 
 namespace anisodyn::analysis {
@@ -24,13 +25,6 @@ std::vector<double> rod_axes(const Trajectory& t, const std::vector<std::size_t>
   return u;
 }
 
-double capped_torque_steps(const Trajectory& t) {
-  const auto it = t.observables.find("capped");
-  double sum = 0;
-  if (it == t.observables.end() || it->second.width < 2) return sum;
-  for (std::size_t r = 0; r < it->second.time.size(); ++r) sum += it->second.value[r * it->second.width + 1];
-  return sum;
-}
 }  // namespace
 
 RestoringTorqueSettings parse_restoring_torque_settings(tool::ConfigNode& cfg) {
@@ -89,10 +83,9 @@ void RestoringTorqueAnalysis::accumulate(const Trajectory& t, int species_index)
         if (counts[b][c] > 0) sample[m * nc + c] = sums[b][m * nc + c] / counts[b][c];
     samples_.add(std::move(sample));
   }
-  const auto capped = t.observables.find("capped");
-  if (capped != t.observables.end()) {
+  if (const auto capped = capped_torque_steps(t)) {
     capped_known_ = true;
-    capped_torques_ += capped_torque_steps(t);
+    capped_torques_ += *capped;
   }
   ++seen_;
 }
