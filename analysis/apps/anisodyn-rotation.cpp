@@ -2,6 +2,7 @@
 // the unbounded rotation vector, Legendre correlations C_1 and C_2, and D_r from both.
 #include <cstdio>
 
+#include "anisodyn/analysis/free_rotation.hpp"
 #include "anisodyn/analysis/rotation.hpp"
 #include "anisodyn/geometry/body_axes.hpp"
 #include "anisodyn/analysis/per_species_stage.hpp"
@@ -12,7 +13,33 @@ using namespace anisodyn::analysis;
 namespace {
 
 
-void write_results(StageRun& run, const SelectedSpecies& sp, const RotationResult& r) {
+/// The details of a D_r from C_n: the rule and the lags it picked (spec 50 §0: every fit records its window).
+nlohmann::json correlation_fit_details(nlohmann::json details, const CorrelationFitWindow& w, const RotationSettings& s) {
+  details["window"] = "lags with correlation_floor <= C_n < correlation_ceiling";
+  details["correlation_floor"] = s.correlation_floor;
+  details["correlation_ceiling"] = s.correlation_ceiling;
+  details["fit_t_min"] = w.t_min;
+  details["fit_t_max"] = w.t_max;
+  details["fit_lags"] = w.lags;
+  details["method"] = "ordinary least squares of ln C_n";
+  return details;
+}
+
+/// D_r(φ)/D_r of spec 20 §6.1 for C1 and C2, when the species table gives a free D_r for the axis
+/// (a top symmetric about it): the free value is an input, so the error is D_r(φ)'s alone.
+void write_free_rotation_ratios(StageRun& run, const SelectedSpecies& sp, const AxisRotation& a) {
+  const auto d0 = free_axis_rotational_diffusion(sp.properties, a.axis);
+  if (!d0) return;
+  const std::string n = body_axis_name(a.axis);
+  const nlohmann::json details = {{"source", "D_rot of species " + sp.name + " about the two other body axes, species table of the first input"},
+                                  {"D_r_free", *d0}};
+  run.out.scalar({"Dr_C1_over_Dr_" + n + "_" + sp.name, a.D_c1.value / *d0, a.D_c1.error / *d0, "1",
+                  "spec 20 §6.1: Dr_C1_" + n + " / free D_r (error from Dr_C1 alone)", details});
+  run.out.scalar({"Dr_C2_over_Dr_" + n + "_" + sp.name, a.D_c2.value / *d0, a.D_c2.error / *d0, "1",
+                  "spec 20 §6.1: Dr_C2_" + n + " / free D_r (error from Dr_C2 alone)", details});
+}
+
+void write_results(StageRun& run, const SelectedSpecies& sp, const RotationResult& r, const RotationSettings& settings) {
   Table& t = run.out.table("rotation_" + sp.name, "rotational statistics of species " + sp.name + " per body axis (spec 50 B1, B3)");
   t.add("time", "tau", "lag time t", r.lag);
   for (const auto& a : r.axes) {
@@ -33,10 +60,11 @@ void write_results(StageRun& run, const SelectedSpecies& sp, const RotationResul
     msad_details["fit_t_max"] = r.fit_t_max;
     run.out.scalar({"Dr_msad_" + n + "_" + sp.name, a.D_msad.value, a.D_msad.error, "rad^2/tau",
                     "spec 50 B1: slope of msad_" + n + " / 4 over the fit window (a linear rod's D_r; for a body axis the mean D_r of the two other axes)", msad_details});
-    nlohmann::json c_details = source;
-    c_details["window"] = "lags with C_n >= correlation_floor";
-    run.out.scalar({"Dr_C1_" + n + "_" + sp.name, a.D_c1.value, a.D_c1.error, "rad^2/tau", "spec 50 B3: -slope of ln C1_" + n + " / 2", c_details});
-    run.out.scalar({"Dr_C2_" + n + "_" + sp.name, a.D_c2.value, a.D_c2.error, "rad^2/tau", "spec 50 B3: -slope of ln C2_" + n + " / 6", c_details});
+    run.out.scalar({"Dr_C1_" + n + "_" + sp.name, a.D_c1.value, a.D_c1.error, "rad^2/tau", "spec 50 B3: -slope of ln C1_" + n + " / 2",
+                    correlation_fit_details(source, a.window_c1, settings)});
+    run.out.scalar({"Dr_C2_" + n + "_" + sp.name, a.D_c2.value, a.D_c2.error, "rad^2/tau", "spec 50 B3: -slope of ln C2_" + n + " / 6",
+                    correlation_fit_details(source, a.window_c2, settings)});
+    write_free_rotation_ratios(run, sp, a);
     if (!run.opt.quiet)
       std::fprintf(stderr, "anisodyn-rotation: %s axis %s: D_r from MSAD %.5g ± %.2g, from C1 %.5g, from C2 %.5g%s\n", sp.name.c_str(),
                    n.c_str(), a.D_msad.value, a.D_msad.error, a.D_c1.value, a.D_c2.value,
@@ -50,7 +78,8 @@ tool::Description description() {
       {optional("species", "string", nullptr, "the species to analyse (none: every species)"),
        optional("axes", "array", nlohmann::json::array({"T", "W", "L"}), "body axes"),
        optional("fit", "object", nullptr, "{t_min, t_max} of the MSAD fit (none: first lag to run/20)"),
-       optional("correlation_floor", "number", 0.05, "C_n fits use the lags with C_n >= this")},
+       optional("correlation_floor", "number", 0.05, "C_n fits use the lags with C_n >= this"),
+       optional("correlation_ceiling", "number", 1.0, "C_n fits use the lags with C_n < this (spec 20 §6.1: 0.5)")},
       "table rotation_<species> (MSAD, C1, C2 per axis) and scalars Dr_msad_<axis>_<species>, Dr_C1_..., Dr_C2_...",
       lag_grid_parameters());
 }
@@ -69,6 +98,6 @@ int main(int argc, char** argv) {
     needs.min_frames = 2;  // one lag
     run_per_species(
         run, {settings.species}, needs, [&] { return RotationAnalysis(settings, run.inputs.size()); },
-        [&](const SelectedSpecies& sp, RotationAnalysis& a, const std::vector<double>&) { write_results(run, sp, a.compute()); });
+        [&](const SelectedSpecies& sp, RotationAnalysis& a, const std::vector<double>&) { write_results(run, sp, a.compute(), settings); });
   });
 }

@@ -6,6 +6,30 @@
 
 namespace anisodyn::analysis {
 
+std::optional<std::pair<double, double>> parse_lag_window(tool::ConfigNode& cfg, const std::string& key) {
+  auto w = cfg.optional_object(key);
+  if (!w) return std::nullopt;
+  const double a = w->positive("t_min"), b = w->positive("t_max");
+  if (!(b > a)) w->fail("t_max", "expected t_max > t_min");
+  return std::make_pair(a, b);
+}
+
+void ReplicaMeanLags::add(const LagGrid& grid, const std::vector<double>& time) {
+  sum_.resize(grid.classes.size(), 0.0);
+  for (std::size_t c = 0; c < grid.classes.size(); ++c) {
+    double lag = 0;
+    for (const auto& [i0, j0] : grid.classes[c].pairs) lag += time[j0] - time[i0];
+    sum_[c] += lag / static_cast<double>(grid.classes[c].pairs.size());
+  }
+  ++replicas_;
+}
+
+std::vector<double> ReplicaMeanLags::mean() const {
+  std::vector<double> out;
+  for (double s : sum_) out.push_back(s / static_cast<double>(std::max<std::size_t>(replicas_, 1)));
+  return out;
+}
+
 bool uniformly_spaced(const std::vector<double>& time, double rel_tol) {
   if (time.size() < 3) return true;
   const double dt = (time.back() - time.front()) / static_cast<double>(time.size() - 1);

@@ -40,11 +40,7 @@ MsdSettings parse_msd_settings(tool::ConfigNode& cfg) {
   s.lags_per_decade = cfg.non_negative("lags_per_decade", s.lags_per_decade);
   s.max_origins = static_cast<std::size_t>(cfg.non_negative_integer("max_origins", 0));
   s.body_frame = cfg.boolean("body_frame", false);
-  if (auto fit = cfg.optional_object("fit")) {
-    const double a = fit->positive("t_min"), b = fit->positive("t_max");
-    if (!(b > a)) fit->fail("t_max", "expected t_max > t_min");
-    s.fit_window = std::make_pair(a, b);
-  }
+  s.fit_window = parse_lag_window(cfg, "fit");
   s.ngp_constant = cfg.choice("ngp_constant", {"auto", "isotropic", "anisotropic"}, "auto");
   s.beta_half_width = cfg.positive("beta_smoothing_decades", s.beta_half_width);
   return s;

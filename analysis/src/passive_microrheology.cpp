@@ -124,11 +124,7 @@ PassiveMicrorheologySettings parse_passive_microrheology_settings(tool::ConfigNo
   s.msd.species = s.species;
   s.msd.lags_per_decade = cfg.non_negative("lags_per_decade", s.msd.lags_per_decade);
   s.msd.max_origins = static_cast<std::size_t>(cfg.non_negative_integer("max_origins", 0));
-  if (auto fit = cfg.optional_object("fit")) {
-    const double a = fit->positive("t_min"), b = fit->positive("t_max");
-    if (!(b > a)) fit->fail("t_max", "expected t_max > t_min");
-    s.msd.fit_window = std::make_pair(a, b);
-  }
+  s.msd.fit_window = parse_lag_window(cfg, "fit");
   return s;
 }
 

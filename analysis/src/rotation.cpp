@@ -29,12 +29,11 @@ RotationSettings parse_rotation_settings(tool::ConfigNode& cfg) {
   }
   s.lags_per_decade = cfg.non_negative("lags_per_decade", s.lags_per_decade);
   s.max_origins = static_cast<std::size_t>(cfg.non_negative_integer("max_origins", 0));
-  if (auto fit = cfg.optional_object("fit")) {
-    const double a = fit->positive("t_min"), b = fit->positive("t_max");
-    if (!(b > a)) fit->fail("t_max", "expected t_max > t_min");
-    s.fit_window = std::make_pair(a, b);
-  }
+  s.fit_window = parse_lag_window(cfg, "fit");
   s.correlation_floor = cfg.positive("correlation_floor", s.correlation_floor);
+  s.correlation_ceiling = cfg.positive("correlation_ceiling", s.correlation_ceiling);
+  if (!(s.correlation_ceiling <= 1.0)) cfg.fail("correlation_ceiling", "expected a value <= 1 (C_n starts at 1)");
+  if (!(s.correlation_ceiling > s.correlation_floor)) cfg.fail("correlation_ceiling", "expected a value above correlation_floor");
   return s;
 }
 
@@ -48,7 +47,6 @@ RotationAnalysis::RotationAnalysis(RotationSettings settings, std::size_t replic
 void RotationAnalysis::accumulate(const Trajectory& t, int species_index) {
   if (seen_ == 0) {
     grid_ = make_lag_grid(t.time, s_.lags_per_decade, s_.max_origins);
-    lag_sum_.assign(grid_.classes.size(), 0.0);
   }
   const auto members = t.members(species_index);
   const std::size_t nc = grid_.classes.size(), na = s_.axes.size(), F = t.frames, N = t.particles;
@@ -87,11 +85,7 @@ void RotationAnalysis::accumulate(const Trajectory& t, int species_index) {
         if (k == 0) counts[b][c] += static_cast<double>(members.size());
       }
   }
-  for (std::size_t c = 0; c < nc; ++c) {
-    double lag = 0;
-    for (const auto& [i0, j0] : grid_.classes[c].pairs) lag += t.time[j0] - t.time[i0];
-    lag_sum_[c] += lag / static_cast<double>(grid_.classes[c].pairs.size());
-  }
+  lags_.add(grid_, t.time);
   for (std::size_t b = 0; b < blocks; ++b) {
     std::vector<double> sample(3 * na * nc, kNaN);
     for (std::size_t m = 0; m < 3 * na; ++m)
@@ -105,7 +99,7 @@ void RotationAnalysis::accumulate(const Trajectory& t, int species_index) {
 RotationResult RotationAnalysis::compute() const {
   RotationResult r;
   const std::size_t nc = grid_.classes.size();
-  for (std::size_t c = 0; c < nc; ++c) r.lag.push_back(lag_sum_[c] / static_cast<double>(std::max<std::size_t>(seen_, 1)));
+  r.lag = lags_.mean();
   r.samples = samples_.count();
   const auto mean = samples_.mean(), se = samples_.standard_error();
   auto slice = [nc](const std::vector<double>& v, std::size_t m) {
@@ -138,12 +132,17 @@ RotationResult RotationAnalysis::compute() const {
         if (r.lag[c] >= t0 * (1 - 1e-9) && r.lag[c] <= t1 * (1 + 1e-9)) { x.push_back(r.lag[c]); y.push_back(m[3 * k * nc + c]); }
       return x.size() >= 2 ? fit_line(x, y).slope / 4.0 : kNaN;
     });
-    // ln C_n over the lags where the mean C_n is well above noise: D_r = −slope / (n(n+1))
+    // ln C_n over the lags where the mean C_n is well above noise and past the short-time
+    // transient: D_r = −slope / (n(n+1))
     for (int n = 1; n <= 2; ++n) {
       const std::vector<double>& cn = n == 1 ? a.c1 : a.c2;
       std::vector<std::size_t> window;
       for (std::size_t c = 0; c < nc; ++c)
-        if (cn[c] >= s_.correlation_floor && cn[c] < 1.0) window.push_back(c);
+        if (cn[c] >= s_.correlation_floor && cn[c] < s_.correlation_ceiling) window.push_back(c);
+      CorrelationFitWindow& used = n == 1 ? a.window_c1 : a.window_c2;
+      used.lags = window.size();
+      used.t_min = window.empty() ? kNaN : r.lag[window.front()];
+      used.t_max = window.empty() ? kNaN : r.lag[window.back()];
       Estimate e = jackknife(samples_, [&](const std::vector<double>& m) {
         std::vector<double> x, y;
         for (std::size_t c : window) { x.push_back(r.lag[c]); y.push_back(m[(3 * k + static_cast<std::size_t>(n)) * nc + c]); }

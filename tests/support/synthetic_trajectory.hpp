@@ -22,6 +22,8 @@ struct SyntheticTrajectory {
   SpeciesTable table{Species{"A", Shape::sphere(1.0), 1.0, Vec3::Ones(), Vec3::Ones()}};
   /// Extra per-particle elements: name → [frame][particle × width].
   std::vector<std::pair<std::string, std::pair<std::size_t, std::vector<std::vector<double>>>>> extras;
+  /// The run's parameters (/parameters/config), e.g. anisodyn-bd's external_torque.
+  nlohmann::json parameters;
   /// Observables: name → rows of (time, values).
   std::vector<std::pair<std::string, std::vector<std::pair<double, std::vector<double>>>>> observables;
 
@@ -30,6 +32,7 @@ struct SyntheticTrajectory {
   void write(const std::string& path) const {
     io::H5mdHeader header;
     header.species = table;
+    header.parameters = parameters;
     io::H5mdWriter w(path, header);
     for (std::size_t f = 0; f < time.size(); ++f) {
       State s;

@@ -8,7 +8,12 @@
 // The origins of a class can be thinned to at most `max_origins` (evenly spread).
 #include <cstddef>
 #include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
 #include <vector>
+
+#include "anisodyn/tool/json_config.hpp"
 
 namespace anisodyn::analysis {
 
@@ -31,6 +36,21 @@ inline std::size_t origin_block(std::size_t origin, std::size_t frames, std::siz
   const std::size_t b = origin * blocks / frames;
   return b < blocks ? b : blocks - 1;
 }
+
+/// The lag time of each class averaged over replicas (spec 50 §0: the reported time of a lag is
+/// the mean over replicas): each replica adds the mean lag of each class's pairs on its own times.
+class ReplicaMeanLags {
+ public:
+  void add(const LagGrid& grid, const std::vector<double>& time);
+  std::vector<double> mean() const;
+
+ private:
+  std::vector<double> sum_;
+  std::size_t replicas_ = 0;
+};
+
+/// A lag window {t_min, t_max} (t_min > 0, t_max > t_min) under `key`, absent when not given.
+std::optional<std::pair<double, double>> parse_lag_window(tool::ConfigNode& cfg, const std::string& key);
 
 /// Index of the lag class whose lag is nearest to t (in log distance).
 std::size_t nearest_lag_class(const LagGrid& grid, double t);

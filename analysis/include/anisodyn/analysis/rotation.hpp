@@ -20,15 +20,25 @@ struct RotationSettings {
   double lags_per_decade = 10.0;
   std::size_t max_origins = 0;
   std::optional<std::pair<double, double>> fit_window;  // MSAD fit; absent → every lag up to t_run/20
-  double correlation_floor = 0.05;  // C_n fits use the lags where C_n ≥ this (and < 1)
+  // C_n fits use the lags where floor ≤ C_n < ceiling. Spec 20 §6.1 asks for 0.05 … 0.5 (the
+  // late-time plateau of the decay rate); the ceiling defaults to 1 so that earlier outputs stay the same.
+  double correlation_floor = 0.05;
+  double correlation_ceiling = 1.0;
 };
 
 RotationSettings parse_rotation_settings(tool::ConfigNode& cfg);
+
+/// The lags a C_n fit used: [t_min, t_max] of the lags with floor ≤ C_n < ceiling (NaN if none).
+struct CorrelationFitWindow {
+  double t_min = 0, t_max = 0;
+  std::size_t lags = 0;
+};
 
 struct AxisRotation {
   int axis = 0;
   std::vector<double> msad, msad_error, c1, c1_error, c2, c2_error;
   Estimate D_msad, D_c1, D_c2;
+  CorrelationFitWindow window_c1, window_c2;
   bool exact_rotation_vectors = false;
   std::size_t violations = 0, intervals = 0;
 };
@@ -50,7 +60,7 @@ class RotationAnalysis {
   RotationSettings s_;
   std::size_t replicas_;
   LagGrid grid_;
-  std::vector<double> lag_sum_;
+  ReplicaMeanLags lags_;
   std::size_t seen_ = 0;
   CurveSamples samples_;  // per sample: [axis][msad, c1, c2][lag]
   std::vector<std::size_t> violations_, intervals_;

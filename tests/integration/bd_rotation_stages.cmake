@@ -1,0 +1,1 @@
+anisodyn_add_script_test(bd_rotation_stages bd_rotation_stages.py)
