@@ -7,7 +7,8 @@
 3. `--replica 1` gives another trajectory from the same seed;
 4. bad input exits 2, names the file and the JSON path, and writes nothing: a negative diffusion
    coefficient, an unknown key, a schedule (BD has no field to switch), a box smaller than twice
-   the rods' cut-off, SI units without a temperature, reduced units with a temperature.
+   the rods' cut-off, rods shorter than their diameter under the overlap-volume potential, SI units
+   without a temperature, reduced units with a temperature, keys of the other potential.
 """
 import json
 import os
@@ -193,4 +194,13 @@ if r.returncode == 0:  # the builder may already refuse it; then the engine must
     r = run([tool("anisodyn-bd"), "-q", "--config", "bd.json", "--input", "small.h5", "--output", "bad.h5"])
 assert r.returncode == 2 and not os.path.exists("bad.h5"), (r.returncode, r.stderr)
 print(f"box below twice the cut-off: exit 2, {r.stderr.strip()[:110]}")
+
+stubby = {**rods, "species": [{**rods["species"][0], "shape": {"type": "spherocylinder", "length": 0.05, "diameter": 0.1}}]}
+json.dump(stubby, open("stubby.json", "w"))
+r = run([tool("anisodyn-config"), "-q", "--config", "stubby.json", "--output", "stubby.h5"])
+assert r.returncode == 0, r.stderr
+r = run([tool("anisodyn-bd"), "-q", "--config", "bd.json", "--input", "stubby.h5", "--output", "bad.h5"])
+assert r.returncode == 2 and "bd.json" in r.stderr and "potential.species" in r.stderr, (r.returncode, r.stderr)
+assert not any(n.startswith("bad.h5") for n in os.listdir(".")), os.listdir(".")
+print(f"rods shorter than their diameter: exit 2, {r.stderr.strip()[:110]}")
 print("1 passed, 0 failed")
