@@ -25,8 +25,9 @@ class Run:
         self.spec = json.load(open(self.manifest))
         self.failures = []
         results = os.path.join(self.tmp, "results")
+        self.campaign = os.path.join(results, self.spec["study"])
         if not os.environ.get("ANISODYN_VALIDATION_KEEP"):  # set it to re-analyse the last run (anisodyn-run skips its jobs)
-            shutil.rmtree(results, ignore_errors=True)
+            shutil.rmtree(self.campaign, ignore_errors=True)
         os.makedirs(results, exist_ok=True)
         t0, cpu0 = time.time(), self._cpu()
         r = subprocess.run([os.path.join(self.bin_dir, "anisodyn-run"), self.manifest, "--jobs", "1", "--no-report", "--quiet",
@@ -34,7 +35,6 @@ class Run:
         if r.returncode != 0:
             sys.exit(f"anisodyn-run {manifest} failed (exit {r.returncode}):\n{r.stdout}\n{r.stderr}")
         self.wall, self.cpu = time.time() - t0, self._cpu() - cpu0
-        self.campaign = os.path.join(results, self.spec["study"])
         print(f"{manifest}: {self.wall:.0f} s wall, {self.cpu:.0f} s CPU (engines, one worker)")
 
     @staticmethod

@@ -1,0 +1,1 @@
+anisodyn_add_script_test(validation_bd_dmc_tracer validation_bd_dmc_tracer.py SLOW)
