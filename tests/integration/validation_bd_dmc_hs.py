@@ -36,7 +36,7 @@ import numpy as np
 
 sys.path[:0] = [sys.argv[3] + "/tests/support", sys.argv[3] + "/workflows"]
 from summarise_dmc_msd import fit_d, msd_by_lag, unwrapped  # noqa: E402
-from validation_runs import Run, mean_se  # noqa: E402
+from validation_runs import Run  # noqa: E402
 
 K = 4.0
 AGREEMENT = 0.03
