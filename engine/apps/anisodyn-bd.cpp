@@ -27,6 +27,12 @@ tool::Description description() {
       tool::optional("potential", "object", nullptr,
                      "{type: overlap_volume, species, hardness (kT/D^3; default k f(0.8D) = kT), finite_length: segment_distance | "
                      "interior_only, skin}: the rod-rod potential of spec 20 §4; none: free particles"),
+      tool::optional("tracer", "object", nullptr,
+                     "{species, pe, axis, record_every}: the pulled tracer of active microrheology (a constant force on the one "
+                     "sphere of species); none: no tracer"),
+      tool::optional("external_torque", "object", nullptr,
+                     "{particles, torque_kT, axis, confinement_kT, record_every}: Method II's constant torque on the tagged rods, "
+                     "their axes held near the plane normal to axis (spec 20 §6.2); none: no external torque"),
       tool::optional("caps", "object", nullptr, "{force, torque}: step_bound (default), a value, or null (no cap)"),
   };
   // Work of a job = particles x steps; rate: 1760 free rods, one core, bench/bd_throughput.cpp.

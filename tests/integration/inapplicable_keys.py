@@ -187,6 +187,7 @@ RUN_GOOD = {"study": "keys", "grid": {"eta": [0.02, 0.03]}, "replicas": 1,
             "report": {"scalars": [{"stage": "msd", "names": ["D_*"]}],
                        "plots": [{"name": "p", "stage": "msd", "table": "msd_board", "y": ["msd_tot"]},
                                  {"name": "q", "stage": "msd", "scalar": "D_tot_board", "x": "eta"}]}}
+SERIES_PLOT_WITH_STAGE = {"name": "q", "stage": "msd", "x": "eta", "series": [{"stage": "msd", "scalar": "D_tot_board"}]}
 RUN_CASES = [  # (label, mutation of the manifest, the path the error must name[, the documented key when not its last part])
     ("a grid variable no stage uses", lambda m: m["grid"].update(W=[1, 8]), "grid.W"),
     ("defaults for a tool no stage runs", lambda m: m.update(defaults={"dmc": {"seed": 4}}), "defaults.dmc"),
@@ -197,6 +198,8 @@ RUN_CASES = [  # (label, mutation of the manifest, the path the error must name[
     ("tau on a constant line", lambda m: m["report"]["plots"][1].update(theory=[{"kind": "constant", "value": 1, "tau": 2}]),
      "report.plots[1].theory[0].tau"),
     ("caption-like key in a scalars block", lambda m: m["report"]["scalars"][0].update(xlabel="x"), "report.scalars[0].xlabel"),
+    ("x_scale in a table plot", lambda m: m["report"]["plots"][0].update(x_scale=2), "report.plots[0].x_scale"),
+    ("a stage beside a series list", lambda m: m["report"]["plots"].__setitem__(1, SERIES_PLOT_WITH_STAGE), "report.plots[1].stage"),
 ]
 
 

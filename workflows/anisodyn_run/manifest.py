@@ -15,6 +15,7 @@ whose value is exactly a reference to a null grid value is left out.
 What a tool is (replicated by default or not) comes from its description (describe.py).
 """
 import json
+import math
 import re
 
 REFERENCE = re.compile(r"\$\{([^}]*)\}")
@@ -259,20 +260,57 @@ def substitute(value, point, replica, study):
     return REFERENCE.sub(lambda mo: format_value(lookup(mo.group(1))), value)
 
 
-THEORY_KINDS = {"constant", "power", "exponential", "free_diffusion", "wertheim"}
+THEORY_KINDS = {"constant", "linear", "power", "exponential", "free_diffusion", "wertheim"}
 # The keys each report item reads (report.py): anything else would be silently ignored.
 SCALAR_BLOCK_KEYS = {"stage", "names", "caption"}
 PLOT_KEYS = {"name", "stage", "select", "log", "xlabel", "ylabel", "title", "caption", "theory"}
 TABLE_PLOT_KEYS = PLOT_KEYS | {"table", "x", "y", "errors"}
-SCALAR_PLOT_KEYS = PLOT_KEYS | {"scalar", "x", "series"}
-THEORY_KEYS = {"constant": {"value"}, "power": {"prefactor", "exponent"}, "exponential": {"tau", "amplitude"},
-               "free_diffusion": {"species", "component"}, "wertheim": {"scalar"}}
+SCALAR_PLOT_KEYS = PLOT_KEYS | {"scalar", "x", "x_scale", "series"}
+SERIES_PLOT_KEYS = (PLOT_KEYS - {"stage"}) | {"x", "x_scale", "series"}  # "series": a list of entries, each its own stage
+SERIES_ENTRY_KEYS = {"stage", "scalar", "label", "select", "band"}
+THEORY_KEYS = {"constant": {"value"}, "linear": {"intercept", "slope"}, "power": {"prefactor", "exponent"},
+               "exponential": {"tau", "amplitude"}, "free_diffusion": {"species", "component"}, "wertheim": {"scalar"}}
+THEORY_NUMBERS = {"linear": {"intercept", "slope"}}  # keys a line needs, each a number
 
 
 def check_keys(item, allowed, path, why):
     for k in item:
         if k not in allowed and not k.startswith("_"):
             raise ManifestError(f"{path}.{k}", f"no '{k}': it has no effect {why} (keys here: {', '.join(sorted(allowed))})")
+
+
+def is_number(v):
+    return isinstance(v, (int, float)) and not isinstance(v, bool)
+
+
+def check_select(select, path, grid):
+    if not isinstance(select, dict):
+        raise ManifestError(path, "an object {grid variable: value}", select)
+    for var in select:
+        if var not in grid:
+            raise ManifestError(f"{path}.{var}", f"no '{var}': it has no effect, select picks values of grid variables ("
+                                + (", ".join(grid) or "the manifest has none") + ")")
+
+
+def check_series_entries(item, p, stages, grid):
+    """The entries of a scalar plot's series list: each {stage, scalar, label, select, band}."""
+    entries = item["series"]
+    if not entries:
+        raise ManifestError(f"{p}.series", "a non-empty list of {stage, scalar, label, select, band}", entries)
+    for j, e in enumerate(entries):
+        q = f"{p}.series[{j}]"
+        if not isinstance(e, dict):
+            raise ManifestError(q, "an object {stage, scalar, label, select, band}", e)
+        check_keys(e, SERIES_ENTRY_KEYS, q, "in a series entry")
+        if e.get("stage") not in stages:
+            raise ManifestError(f"{q}.stage", "the name of a stage of this manifest", e.get("stage"))
+        if not isinstance(e.get("scalar"), str):
+            raise ManifestError(f"{q}.scalar", "the name of a scalar of the stage's output", e.get("scalar"))
+        if not isinstance(e.get("label", ""), str):
+            raise ManifestError(f"{q}.label", "a text", e.get("label"))
+        check_select(e.get("select", {}), f"{q}.select", grid)
+        if "band" in e and not (is_number(e["band"]) and 0 < e["band"] < 1):
+            raise ManifestError(f"{q}.band", "a relative half-width between 0 and 1 (e.g. 0.02 for ±2%)", e["band"])
 
 
 def validate_report(m):
@@ -294,33 +332,40 @@ def validate_report(m):
             p = f"report.{key}[{i}]"
             if not isinstance(item, dict):
                 raise ManifestError(p, "an object", item)
-            if item.get("stage") not in stages:
+            listed = key == "plots" and isinstance(item.get("series"), list)  # several scalars, each of its own stage
+            if not listed and item.get("stage") not in stages:
                 raise ManifestError(f"{p}.stage", "the name of a stage of this manifest", item.get("stage"))
             if key == "scalars":
                 check_keys(item, SCALAR_BLOCK_KEYS, p, "in a scalars block")
                 if not isinstance(item.get("names", ["*"]), list):
                     raise ManifestError(f"{p}.names", "a list of scalar names (wildcards allowed)", item.get("names"))
                 continue
-            if ("table" in item) == ("scalar" in item):
-                raise ManifestError(p, "either 'table' (curves against a column) or 'scalar' (against a grid variable)")
+            if ("table" in item) + ("scalar" in item) + listed != 1:
+                raise ManifestError(p, "one of 'table' (curves against a column), 'scalar' (a stage's scalar against a grid "
+                                       "variable) or 'series' as a list of {stage, scalar} (several scalars against a grid variable)")
             if "table" in item:
                 check_keys(item, TABLE_PLOT_KEYS, p, "in a table plot")
+            elif listed:
+                check_keys(item, SERIES_PLOT_KEYS, p, "in a scalar plot whose series is a list (each entry names its stage)")
+                check_series_entries(item, p, stages, grid)
             else:
                 check_keys(item, SCALAR_PLOT_KEYS, p, "in a scalar plot")
-            select = item.get("select", {})
-            if not isinstance(select, dict):
-                raise ManifestError(f"{p}.select", "an object {grid variable: value}", select)
-            for var in select:
-                if var not in grid:
-                    raise ManifestError(f"{p}.select.{var}", f"no '{var}': it has no effect, select picks values of grid variables ("
-                                        + (", ".join(grid) or "the manifest has none") + ")")
+            check_select(item.get("select", {}), f"{p}.select", grid)
             if "table" in item and (not isinstance(item.get("y"), list) or not item["y"]):
                 raise ManifestError(f"{p}.y", "a non-empty list of column names", item.get("y"))
-            if "scalar" in item:
-                for axis in ("x", "series"):
-                    if (axis == "x" or axis in item) and item.get(axis) not in grid:
+            if "table" not in item:
+                for axis in ("x", "series") if "scalar" in item else ("x",):
+                    value = item.get(axis)
+                    if (axis == "x" or axis in item) and (not isinstance(value, str) or value not in grid):
                         raise ManifestError(f"{p}.{axis}", "a grid variable (" + (", ".join(grid) or "the manifest has none") + ")",
-                                            item.get(axis))
+                                            value)
+                if "x_scale" in item:
+                    scale = item["x_scale"]
+                    if not is_number(scale) or scale == 0 or not math.isfinite(scale):
+                        raise ManifestError(f"{p}.x_scale", "a non-zero number (the x coordinate is the grid value times it)", scale)
+                    if not all(is_number(v) for v in grid[item["x"]]):
+                        raise ManifestError(f"{p}.x_scale", f"no 'x_scale': it has no effect, the values of grid.{item['x']} are not "
+                                                            "all numbers (they are drawn at their positions in the list)")
             if not isinstance(item.get("log", ""), str) or set(item.get("log", "")) - set("xy"):
                 raise ManifestError(f"{p}.log", "'x', 'y', 'xy' or ''", item.get("log"))
             for j, t in enumerate(item.get("theory", [])):
@@ -328,6 +373,9 @@ def validate_report(m):
                     raise ManifestError(f"{p}.theory[{j}].kind", "one of " + ", ".join(sorted(THEORY_KINDS)),
                                         t.get("kind") if isinstance(t, dict) else t)
                 check_keys(t, THEORY_KEYS[t["kind"]] | {"kind", "label"}, f"{p}.theory[{j}]", f"on a '{t['kind']}' line")
+                for number in sorted(THEORY_NUMBERS.get(t["kind"], ())):
+                    if not is_number(t.get(number)):
+                        raise ManifestError(f"{p}.theory[{j}].{number}", f"a number (the line's {number})", t.get(number))
 
 
 def validate_everything_acts(m):

@@ -238,18 +238,19 @@ class Report:
         fig, ax = plt.subplots(figsize=(6.4, 4.6))
         if "table" in spec:
             self.curve_plot(ax, spec, where)
-        elif "scalar" in spec:
+        elif "scalar" in spec or isinstance(spec.get("series"), list):
             self.scalar_plot(ax, spec, where)
         else:
             plt.close(fig)
-            raise ReportError(f"{where}: expected 'table' (curves) or 'scalar' (against a grid variable)")
+            raise ReportError(f"{where}: expected 'table' (curves), 'scalar' or a 'series' list (scalars against a grid variable)")
         log = spec.get("log", "")
         if "x" in log:
             ax.set_xscale("log")
         if "y" in log:
             ax.set_yscale("log")
         ax.set_xlabel(spec.get("xlabel", spec.get("x", "")))
-        ax.set_ylabel(spec.get("ylabel", ", ".join(spec["y"]) if "table" in spec else spec["scalar"]))
+        ax.set_ylabel(spec.get("ylabel", ", ".join(spec["y"]) if "table" in spec else
+                               spec.get("scalar") or ", ".join(e.get("label", e["scalar"]) for e in spec["series"])))
         ax.set_title(spec.get("title", name))
         if ax.get_legend_handles_labels()[0]:
             ax.legend(fontsize=7)
@@ -259,9 +260,9 @@ class Report:
         plt.close(fig)
         return [f"### {spec.get('title', name)}", "", f"![{name}]({png})", ""] + ([spec["caption"], ""] if "caption" in spec else [])
 
-    def selected_jobs(self, spec, where):
+    def selected_jobs(self, spec, where, select=None):
         jobs = self.stage_jobs(spec.get("stage"), where)
-        sel = spec.get("select", {})
+        sel = spec.get("select", {}) if select is None else select
         return [j for j in jobs if all(format_value(j.point.get(v)) == format_value(val) for v, val in sel.items() if v in j.point)]
 
     def curve_plot(self, ax, spec, where):
@@ -295,29 +296,87 @@ class Report:
                 self.theory(ax, t, job, xs, where)
 
     def scalar_plot(self, ax, spec, where):
+        """Scalars ± SE against the grid variable `x` (times `x_scale`): one stage's scalar, one series per
+        value of the grid variable `series`; or, with `series` a list, one series per entry, each with its
+        own stage, scalar and select (an entry whose stage does not depend on `x` is a horizontal line)."""
         import numpy as np
-        x, series = spec.get("x"), spec.get("series")
+        x, scale = spec.get("x"), spec.get("x_scale", 1.0)
         grid = self.m.get("grid", {})
-        for key, var in (("x", x), ("series", series)):
-            if var is not None and var not in grid:
-                raise ReportError(f"{where}.{key}: expected a grid variable ({', '.join(grid) or 'none'})")
-        groups = {}
-        for job in self.selected_jobs(spec, where):
-            scalars = read_scalars(self.path(job))
-            if spec["scalar"] not in scalars:
-                raise ReportError(f"{where}.scalar: stage '{spec['stage']}' has no scalar '{spec['scalar']}' ({', '.join(scalars)})")
-            v, e = scalars[spec["scalar"]][:2]
-            groups.setdefault(format_value(job.point.get(series)) if series else "", []).append((self.axis_value(x, job.point.get(x)), v, e))
-        for label, pts in groups.items():
-            pts.sort()
-            a = np.array(pts)
-            ax.errorbar(a[:, 0], a[:, 1], yerr=np.nan_to_num(a[:, 2]), marker="o", ms=4, capsize=2,
-                        label=f"{series} = {label}" if series else spec["scalar"])
+        if x not in grid:
+            raise ReportError(f"{where}.x: expected a grid variable ({', '.join(grid) or 'none'})")
+        if isinstance(spec.get("series"), list):
+            xs = []
+            for i, entry in enumerate(spec["series"]):
+                select = {**spec.get("select", {}), **entry.get("select", {})}
+                xs += self.listed_series(ax, entry, f"{where}.series[{i}]", x, scale, select)
+        else:
+            by = spec.get("series")
+            if by is not None and by not in grid:
+                raise ReportError(f"{where}.series: expected a grid variable ({', '.join(grid) or 'none'})")
+            groups = {}
+            for xv, v, e, job in self.scalar_points(spec, where, x, scale, spec.get("select", {})):
+                groups.setdefault(format_value(job.point.get(by)) if by else "", []).append((xv, v, e))
+            xs = []
+            for label, pts in groups.items():
+                xs += self.draw_points(ax, pts, f"{by} = {label}" if by else spec["scalar"])
         if not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in grid[x]):
             ax.set_xticks(range(len(grid[x])), [format_value(v) for v in grid[x]])
-        xs = np.array(sorted({p[0] for pts in groups.values() for p in pts}))
+        xs = np.array(sorted(set(xs)))
         for t in spec.get("theory", []):
             self.theory(ax, t, None, xs, where)
+
+    def scalar_points(self, item, where, x, scale, select, constant_allowed=False):
+        """(x coordinate, value, SE, job) of item's scalar for every selected grid point of item's stage; the
+        x coordinate is None for a stage that does not depend on x (an error unless constant_allowed)."""
+        out = []
+        for job in self.selected_jobs(item, where, select):
+            scalars = read_scalars(self.path(job))
+            if item["scalar"] not in scalars:
+                raise ReportError(f"{where}.scalar: stage '{item['stage']}' has no scalar '{item['scalar']}' ({', '.join(scalars)})")
+            v, e = scalars[item["scalar"]][:2]
+            out.append((self.axis_value(x, job.point[x]) * scale if x in job.point else None, v, e, job))
+        if out and out[0][0] is None and not constant_allowed:
+            raise ReportError(f"{where}.x: stage '{item['stage']}' does not depend on the grid variable '{x}'")
+        return out
+
+    def listed_series(self, ax, entry, where, x, scale, select):
+        """One entry of a series list: its points against x, or a horizontal line (± `band`) when its stage
+        does not depend on x. Several grid points at one x are an error: select must pick one."""
+        label = entry.get("label", entry["scalar"])
+        points = self.scalar_points(entry, where, x, scale, select, constant_allowed=True)
+        if not points:  # as for the single scalar: a select no grid point matches (e.g. in a smoke variant) draws nothing
+            return []
+        if points[0][0] is None:
+            if len(points) > 1:
+                raise ReportError(f"{where}: stage '{entry['stage']}' has {len(points)} grid points that do not differ in "
+                                  f"'{x}'; pick one with select")
+            value = points[0][1]
+            probe, = ax.plot([], [])  # the next colour of the cycle (axhline does not take one)
+            color = probe.get_color()
+            probe.remove()
+            ax.axhline(value, lw=1.2, color=color, label=label)
+            if "band" in entry:
+                ax.axhspan(value * (1 - entry["band"]), value * (1 + entry["band"]), color=color, alpha=0.15, lw=0,
+                           label=f"{label} ± {100 * entry['band']:g}%")
+            return []
+        if "band" in entry:
+            raise ReportError(f"{where}.band: no 'band': it has no effect, stage '{entry['stage']}' varies with '{x}' "
+                              "(a band goes around the horizontal line of a stage that does not)")
+        at = {}
+        for xv, _, _, job in points:
+            if xv in at:
+                differ = [v for v in self.m.get("grid", {}) if format_value(job.point.get(v)) != format_value(at[xv].point.get(v))]
+                raise ReportError(f"{where}: stage '{entry['stage']}' has several grid points at {x} = "
+                                  f"{format_value(job.point[x])} (they differ in {', '.join(differ)}); pick one with select")
+            at[xv] = job
+        return self.draw_points(ax, [p[:3] for p in points], label)
+
+    @staticmethod
+    def draw_points(ax, points, label):
+        import numpy as np
+        a = np.array(sorted(points, key=lambda p: p[0]), dtype=float)
+        ax.errorbar(a[:, 0], a[:, 1], yerr=np.nan_to_num(a[:, 2]), marker="o", ms=4, capsize=2, label=label)
+        return list(a[:, 0])
 
     def axis_value(self, var, value):
         """A grid value as a plot coordinate: the number, or the position in the grid's list."""
@@ -336,6 +395,10 @@ class Report:
         style = dict(color="k", lw=1, ls="--")
         if kind == "constant":
             ax.axhline(t["value"], label=t.get("label", f"theory: {t['value']}"), **style)
+        elif kind == "linear":  # from x = 0 (the intercept) when the data are at x > 0
+            line = np.linspace(min(0.0, float(np.min(xs))), hi, 200)
+            ax.plot(line, t["intercept"] + t["slope"] * line,
+                    label=t.get("label", f"{t['intercept']:g} + {t['slope']:g} x"), **style)
         elif kind == "power":
             ax.plot(grid, t["prefactor"] * grid ** t["exponent"], label=t.get("label", f"∝ x^{t['exponent']}"), **style)
         elif kind == "exponential":
@@ -355,7 +418,7 @@ class Report:
             ls = np.arange(max(1, int(lo)), int(hi) + 1)
             ax.plot(ls, (1 - pb) ** 2 * pb ** (ls - 1), label=t.get("label", f"Wertheim, p_b = {pb:.3g}"), **style)
         else:
-            raise ReportError(f"{where}.theory: unknown kind '{kind}' (constant, power, exponential, free_diffusion, wertheim)")
+            raise ReportError(f"{where}.theory: unknown kind '{kind}' (constant, linear, power, exponential, free_diffusion, wertheim)")
 
     def free_diffusivity(self, job, t, where):
         """D of the free-particle line (MSD = 2 D t), from the D0 scalars the msd stage wrote from its

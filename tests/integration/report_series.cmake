@@ -1,0 +1,1 @@
+anisodyn_add_script_test(report_series report_series.py)

@@ -1,0 +1,172 @@
+#!/usr/bin/env python3
+"""The report's scalar plots with several series (docs/manifests.md, Report), on synthetic analysis outputs:
+  1. the manifest check refuses bad series lists, x_scale and linear lines, naming the JSON path;
+  2. a series list draws each entry's scalar against grid value × x_scale (its own stage and select), an
+     entry whose stage does not depend on x as a horizontal line with its ±band, and the linear theory line
+     from x = 0; the single-scalar form takes x_scale too;
+  3. at report time: an entry with several grid points at one x, a band on an entry that varies with x, and
+     a missing scalar are errors naming the entry's path; an entry whose select matches nothing draws nothing.
+argv: [1] build bin dir (unused), [2] scratch dir, [3] source dir."""
+import os
+import shutil
+import sys
+
+import h5py
+import numpy as np
+
+tmp, source = sys.argv[2], sys.argv[3]
+sys.path.insert(0, os.path.join(source, "workflows"))
+sys.path.insert(0, os.path.join(source, "tests", "support"))
+from anisodyn_run.expand import Job  # noqa: E402
+from anisodyn_run.manifest import ManifestError, validate_report  # noqa: E402
+from anisodyn_run.report import Report, ReportError  # noqa: E402
+from script_checks import check, finish  # noqa: E402
+
+import matplotlib  # noqa: E402
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+shutil.rmtree(tmp, ignore_errors=True)
+os.makedirs(tmp)
+
+NS, HARD = [90, 440, 1760], [1.0, 2.0]
+BASE = {"study": "series", "grid": {"N": NS, "hardness": HARD, "label": ["a", "b"]},
+        "stages": [{"name": "pairs", "tool": "x"}, {"name": "pilot", "tool": "x"}, {"name": "other", "tool": "x"}]}
+GOOD_PLOT = {"name": "p", "x": "N", "x_scale": 0.001,
+             "series": [{"stage": "pairs", "scalar": "D", "select": {"hardness": 1.0}, "label": "k"},
+                        {"stage": "pilot", "scalar": "D", "band": 0.02, "label": "pilot"}],
+             "theory": [{"kind": "linear", "intercept": 1.0, "slope": -0.2, "label": "1 - x/5"}]}
+
+
+def manifest(plot):
+    return dict(BASE, report={"plots": [plot]})
+
+
+# 1. the manifest check
+try:
+    validate_report(manifest(GOOD_PLOT))
+    check(True, "a series list with x_scale, band and a linear line passes the manifest check")
+except ManifestError as e:
+    check(False, f"the good series plot is refused: {e}")
+
+BAD = [  # (what, plot, the path the message must name)
+    ("a linear line without its slope", dict(GOOD_PLOT, theory=[{"kind": "linear", "intercept": 1}]), "report.plots[0].theory[0].slope"),
+    ("a linear line with a text intercept", dict(GOOD_PLOT, theory=[{"kind": "linear", "intercept": "1", "slope": 0}]),
+     "report.plots[0].theory[0].intercept"),
+    ("tau on a linear line", dict(GOOD_PLOT, theory=[{"kind": "linear", "intercept": 1, "slope": 0, "tau": 2}]),
+     "report.plots[0].theory[0].tau"),
+    ("x_scale 0", dict(GOOD_PLOT, x_scale=0), "report.plots[0].x_scale"),
+    ("x_scale on a grid of texts", dict(GOOD_PLOT, x="label"), "report.plots[0].x_scale"),
+    ("x_scale on a table plot", {"stage": "pairs", "table": "t", "y": ["P"], "x_scale": 2}, "report.plots[0].x_scale"),
+    ("a stage beside a series list", dict(GOOD_PLOT, stage="pairs"), "report.plots[0].stage"),
+    ("a scalar beside a series list", dict(GOOD_PLOT, scalar="D"), "report.plots[0]"),
+    ("an empty series list", dict(GOOD_PLOT, series=[]), "report.plots[0].series"),
+    ("an entry without a scalar", dict(GOOD_PLOT, series=[{"stage": "pairs"}]), "report.plots[0].series[0].scalar"),
+    ("an entry of no stage", dict(GOOD_PLOT, series=[{"stage": "nope", "scalar": "D"}]), "report.plots[0].series[0].stage"),
+    ("an entry with an unknown key", dict(GOOD_PLOT, series=[{"stage": "pairs", "scalar": "D", "tau": 1}]),
+     "report.plots[0].series[0].tau"),
+    ("an entry selecting no grid variable", dict(GOOD_PLOT, series=[{"stage": "pairs", "scalar": "D", "select": {"phi": 1}}]),
+     "report.plots[0].series[0].select.phi"),
+    ("a band of 2", dict(GOOD_PLOT, series=[{"stage": "pilot", "scalar": "D", "band": 2}]), "report.plots[0].series[0].band"),
+    ("a series list without x", {k: v for k, v in GOOD_PLOT.items() if k != "x"}, "report.plots[0].x"),
+]
+for what, plot, path in BAD:
+    try:
+        validate_report(manifest(plot))
+        check(False, f"{what}: accepted")
+    except ManifestError as e:
+        check(str(e).startswith(f"at {path}: expected"), f"{what}: {e}")
+
+# 2. drawing, on synthetic outputs: pairs at N x hardness (D = 1 - N/5000 + hardness/100), other at N, pilot at no grid point
+campaign = os.path.join(tmp, "campaign")
+jobs, by_stage = {}, {}
+
+
+def output(stage, point, scalars):
+    directory = os.path.join(stage, *[f"{k}={v}" for k, v in point.items()])
+    os.makedirs(os.path.join(campaign, directory), exist_ok=True)
+    job = Job(f"{stage}{len(jobs)}", stage, "x", {}, point, None, [], directory, stage, stage + ".h5",
+              info={"output": {"kind": "analysis"}})
+    with h5py.File(os.path.join(campaign, job.output), "w") as f:
+        for name, (v, e) in scalars.items():
+            ds = f.create_dataset(f"scalars/{name}", data=np.array([v, e]))
+            ds.attrs["units"], ds.attrs["definition"] = "1", "synthetic"
+    jobs[job.id] = job
+    by_stage.setdefault(stage, []).append(job.id)
+
+
+def d_value(n, h):
+    return 1 - n / 5000 + h / 100
+
+
+for n in NS:
+    for h in HARD:
+        output("pairs", {"N": n, "hardness": h}, {"D": (d_value(n, h), 0.01)})
+    output("other", {"N": n}, {"D": (0.5, 0.02)})
+output("pilot", {}, {"D": (0.9, 0.003)})
+m = dict(BASE, grid={"N": NS, "hardness": HARD})
+report = Report(m, jobs, by_stage, campaign, tmp)
+
+
+def labelled(ax):
+    """{label: line} of the plain lines and of the data lines of the error-bar series."""
+    out = {line.get_label(): line for line in ax.get_lines() if not line.get_label().startswith("_")}
+    out.update({c.get_label(): c.lines[0] for c in ax.containers if hasattr(c, "has_yerr")})
+    return out
+
+
+def draw(plot):
+    fig, ax = plt.subplots()
+    try:
+        report.scalar_plot(ax, plot, "report.plots[0]")
+        return ax
+    finally:
+        plt.close(fig)
+
+
+ax = draw(GOOD_PLOT)
+lines = labelled(ax)
+k = lines.get("k")
+check(k is not None and np.allclose(k.get_xdata(), [0.09, 0.44, 1.76]) and
+      np.allclose(k.get_ydata(), [d_value(n, 1.0) for n in NS]), "entry 'k': x = N × 0.001, y the selected hardness' values")
+pilot = lines.get("pilot")
+check(pilot is not None and np.allclose(pilot.get_ydata(), 0.9), "an entry of a stage without x is a horizontal line at its value")
+bands = [p for p in ax.patches if p.get_label() == "pilot ± 2%"]
+check(len(bands) == 1 and np.allclose(sorted({round(y, 12) for _, y in bands[0].get_xy()}), [0.9 * 0.98, 0.9 * 1.02]),
+      "its band spans the value ± 2%")
+theory = lines.get("1 - x/5")
+check(theory is not None and np.isclose(theory.get_xdata()[0], 0) and np.isclose(theory.get_xdata()[-1], 1.76) and
+      np.allclose(theory.get_ydata(), 1 - 0.2 * theory.get_xdata()), "the linear line runs from x = 0 to the largest x, y = 1 - x/5")
+
+ax = draw({"name": "q", "stage": "pairs", "scalar": "D", "x": "N", "x_scale": 0.001, "series": "hardness"})
+lines = labelled(ax)
+check(set(lines) == {"hardness = 1.0", "hardness = 2.0"} and np.allclose(lines["hardness = 2.0"].get_xdata(), [0.09, 0.44, 1.76]) and
+      np.allclose(lines["hardness = 2.0"].get_ydata(), [d_value(n, 2.0) for n in NS]), "the single-scalar form scales x too")
+
+ax = draw(dict(GOOD_PLOT, select={"hardness": 2.0}, series=[{"stage": "pairs", "scalar": "D", "label": "2k"},
+                                                             {"stage": "pairs", "scalar": "D", "select": {"hardness": 1.0}, "label": "k"}]))
+lines = labelled(ax)
+check(np.allclose(lines["2k"].get_ydata(), [d_value(n, 2.0) for n in NS]) and np.allclose(lines["k"].get_ydata(), [d_value(n, 1.0) for n in NS]),
+      "the plot's select applies to every entry, an entry's own select overrides it")
+
+ax = draw(dict(GOOD_PLOT, series=[{"stage": "other", "scalar": "D", "select": {"N": 7}, "label": "none"},
+                                   {"stage": "other", "scalar": "D", "label": "other"}]))
+lines = labelled(ax)
+check("none" not in lines and "other" in lines, "an entry whose select matches no grid point draws nothing (as a single scalar's)")
+
+# 3. errors at report time
+ERRORS = [
+    ("an entry with two grid points at one x", [{"stage": "pairs", "scalar": "D"}], "report.plots[0].series[0]", "hardness"),
+    ("a band on an entry that varies with x", [{"stage": "other", "scalar": "D", "band": 0.02}], "report.plots[0].series[0].band",
+     "no effect"),
+    ("a scalar the stage did not write", [{"stage": "pilot", "scalar": "D"}, {"stage": "other", "scalar": "Q"}],
+     "report.plots[0].series[1].scalar", "no scalar 'Q'"),
+]
+for what, series, path, words in ERRORS:
+    try:
+        draw(dict(GOOD_PLOT, series=series))
+        check(False, f"{what}: drawn")
+    except ReportError as e:
+        check(str(e).startswith(path) and words in str(e), f"{what}: {e}")
+
+finish()

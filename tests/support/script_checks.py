@@ -1,0 +1,16 @@
+"""The ok/FAIL lines of an integration script: check(cond, what) prints one line per check and keeps
+the failures; finish() prints their count and exits 1 if there were any."""
+import sys
+
+failures = []
+
+
+def check(cond, what):
+    print(f"{'ok  ' if cond else 'FAIL'} {what}")
+    if not cond:
+        failures.append(what)
+
+
+def finish():
+    print(f"{len(failures)} failed")
+    sys.exit(1 if failures else 0)
