@@ -26,11 +26,11 @@ grid = run.spec["grid"]
 print("| eta | Pe | DMC gamma_eff/gamma_0 | BD gamma_eff/gamma_0 | BD - DMC |")
 print("|---|---|---|---|---|")
 rows = []
-for eta in grid["eta"]:
+for eta, placement in zip(grid["eta"], grid["placement"]):
     for pe, t_run in zip(grid["Pe"], grid["t_run"]):
         value = {}
         for engine in ("dmc", "bd"):
-            (path,) = run.outputs(f"mr_{engine}", eta=eta, Pe=pe, t_run=t_run)
+            (path,) = run.outputs(f"mr_{engine}", eta=eta, placement=placement, Pe=pe, t_run=t_run)
             value[engine] = read_scalars(path)["gamma_eff_over_gamma0"][:2]
         (d, d_se), (b, b_se) = value["dmc"], value["bd"]
         diff_se = (d_se ** 2 + b_se ** 2) ** 0.5
