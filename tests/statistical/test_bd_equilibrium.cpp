@@ -299,7 +299,7 @@ SegmentResult run_segment(const Configuration& start, const RodSystem& sys, cons
   b.torque_cap = 0.2 * sys.diameter * b.kT / (sys.length * d.rotation * b.time_step);
   const OverlapVolume pot = potential_of(sys);
   RodOverlapPairs pairs{pot, 0, {}, {}};
-  PairForceField<RodOverlapPairs> field(pairs, pairs.cutoffs(1), 1, sys.length / 10.0);
+  PairForceField<RodOverlapPairs> field(pairs, pairs.segment_cutoffs(1), 1, sys.length / 10.0, pairs.half_lengths(1));
   BdIntegrator integrator(b, std::ref(field));
   const auto steps_of = [&](double t) { return static_cast<std::int64_t>(std::llround(t / seg.time_step)); };
   const std::int64_t first = steps_of(0.5 * seg.duration), last = steps_of(seg.duration), every = steps_of(seg.frame_interval);

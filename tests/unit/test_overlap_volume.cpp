@@ -2,8 +2,9 @@
 // the f table against the spec's numbers and an independent long-double reference
 // (tests/support/reference_overlap_volume.hpp), pair energies against that reference, forces and
 // torques against central finite differences of the energy for random pairs of both branches and
-// both finite-length rules, Newton's third law, the balance of angular momentum, and the size of the
-// published discontinuity at the branch switch.
+// both finite-length rules, Newton's third law, the balance of angular momentum, the segment
+// cut-off that neighbour lists use (no pair interacts beyond it; near-parallel pairs do beyond D),
+// and the size of the published discontinuity at the branch switch.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 #include <string>
 
 #include "anisodyn/core/rng.hpp"
+#include "anisodyn/geometry/spherocylinder.hpp"
 #include "anisodyn/interactions/overlap_volume.hpp"
 #include "reference_overlap_volume.hpp"
 
@@ -365,5 +367,40 @@ TEST(OverlapVolume, BranchSwitchJumpIsThePublishedOne) {
                 all.max_force_jump * kD);
     EXPECT_NEAR(centred.contact_energy_ratio, (M_PI / 4.0) / (2.0 / 3.0), 1e-3);
     EXPECT_GT(centred.max_energy_jump, 0.1 * k * kD * kD * L);  // the jump is real and large
+  }
+}
+
+TEST(OverlapVolume, NoPairInteractsBeyondTheSegmentCutoff) {
+  // Random pairs of all kinds, and near-parallel pairs at the edge of the branch's reach: axes in
+  // the xy-plane at ±γ/2 to x̂ with sin γ just below D/L, centres A ≈ L/cos(γ/2) apart along x̂
+  // (L_ov just above 0) and d ≈ D apart along ẑ, where the segments are √(d² + (A − L cos(γ/2))²) apart.
+  Rng rng(20050624, 4);
+  for (const double L : {kLong, kShort}) {
+    const OverlapVolume ov = make(L);
+    const double cutoff = ov.segment_cutoff();
+    double widest = 0.0;  // largest segment distance of an interacting pair, over D
+    int beyond_d = 0;
+    for (int n = 0; n < 40000; ++n) {
+      Pair p;
+      if (n % 2 == 0) {
+        p = random_pair(rng, L, n % 3);
+      } else {
+        // The excess of the reach over D is ε²/2D, 9×10⁻⁶ D for L/D = 59.46: d and A stay that close.
+        const double g = std::asin(kD / L * (1.0 - rng.uniform(1e-9, 1e-4))), c = std::cos(0.5 * g);
+        p.u_i = Vec3(c, std::sin(0.5 * g), 0.0);
+        p.u_j = Vec3(c, -std::sin(0.5 * g), 0.0);
+        p.r_ji = -Vec3(L / c * (1.0 - rng.uniform(1e-9, 1e-6)), 0.0, kD - rng.uniform(0.0, 1.0) * (cutoff - kD));
+      }
+      const RodPairTerm t = ov(p.r_ji, p.u_i, p.u_j);
+      if (!t.interacts) continue;
+      const double d = std::sqrt(segment_segment_dist2(p.u_i, 0.5 * L, p.u_j, 0.5 * L, p.r_ji));
+      ASSERT_LT(d, cutoff) << "pair " << n;
+      widest = std::max(widest, d / kD);
+      beyond_d += d > kD;
+    }
+    std::printf("L/D = %.2f: segment cut-off %.9f D; interacting pairs up to %.9f D apart, %d beyond D\n", L / kD, cutoff / kD,
+                widest, beyond_d);
+    EXPECT_GT(beyond_d, 1000);                     // a cut-off of D would miss pairs
+    EXPECT_GT(widest, 1.0 + 0.9 * (cutoff / kD - 1.0));  // and the bound is nearly reached
   }
 }

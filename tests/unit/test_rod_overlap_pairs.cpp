@@ -14,6 +14,7 @@
 #include "anisodyn/core/rng.hpp"
 #include "anisodyn/interactions/pair_force_field.hpp"
 #include "anisodyn/interactions/rod_overlap_pairs.hpp"
+#include "field_forces.hpp"
 
 using namespace anisodyn;
 
@@ -40,11 +41,8 @@ RodOverlapPairs evaluator() {
 
 BodyForces field_forces(const State& s) {
   const RodOverlapPairs e = evaluator();
-  PairForceField<RodOverlapPairs> field(e, e.cutoffs(2), 2, 0.25);
-  BodyForces out;
-  out.reset(s.particles.size());
-  field(s, out);
-  return out;
+  PairForceField<RodOverlapPairs> field(e, e.segment_cutoffs(2), 2, 0.25, e.half_lengths(2));
+  return testing_support::forces_of(field, s);
 }
 }  // namespace
 

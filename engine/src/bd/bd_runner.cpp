@@ -158,7 +158,8 @@ void BdRunner::build_rod_forces(const std::string& config_file) {
   RodOverlapPairs pairs{OverlapVolume(ov), rods, {}, {}};
   const auto ns = static_cast<int>(state_.species.size());
   pair_distances_.assign(kDistanceBins, 0);
-  rod_forces_ = std::make_unique<PairForceField<RodOverlapPairs>>(pairs, pairs.cutoffs(ns), ns, spec.skin.value_or(shape.length / 20.0));
+  rod_forces_ = std::make_unique<PairForceField<RodOverlapPairs>>(pairs, pairs.segment_cutoffs(ns), ns, spec.skin.value_or(shape.length / 20.0),
+                                                                    pairs.half_lengths(ns));
   summary_["potential"] = {{"type", "overlap_volume"},
                            {"species", state_.species[static_cast<std::size_t>(rods)].name},
                            {"hardness", ov.hardness},

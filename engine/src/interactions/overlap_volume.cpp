@@ -156,6 +156,22 @@ double OverlapVolume::f_prime(double d) const {
   return D * D * slope;
 }
 
+// Segment reach of the near-parallel branch. Take σ = sign(û_i·û_j) and γ′ ∈ [0, π/2] the angle of û_i
+// and σû_j, so sin γ′ = sin γ < D/L, i.e. γ′ < γ_s; m = |û_i + σû_j| = 2 cos(γ′/2), ū = (û_i + σû_j)/m,
+// and r_ij = q + a ū with q ⊥ ū, |q| = d and a = r_ij·ū = (r_ij·û_i + σ r_ij·û_j)/m. A pair interacts
+// only if d < D and L_ov > 0, i.e. |r_ij·û_i| + |r_ij·û_j| < 2L, so |a| < 2L/m. The points of
+// parameter t on rod i and −t on rod j (along σû_j) are r_ij + t m ū = q + (a + t m) ū apart. With
+// t = −a/m clamped to [−L/2, L/2] the gap along ū is 0 if |a| ≤ mL/2 and otherwise
+// |a| − mL/2 < 2L/m − mL/2 = L sin²(γ′/2)/cos(γ′/2) < ε (it grows with γ′). So the segment distance
+// is below √(d² + ε²) < √(D² + ε²). Main-branch pairs interact only at segment distance below D: the
+// segment-distance rule uses it, and the interior-only rule's line distance equals it when both
+// closest points lie on the segments.
+double OverlapVolume::segment_cutoff() const {
+  const double L = s_.length, D = s_.diameter;
+  const double half = 0.5 * std::asin(D / L), sin_half = std::sin(half);
+  return std::hypot(D, L * sin_half * sin_half / std::cos(half));
+}
+
 double OverlapVolume::hardness_for(double diameter, double kT) {
   if (!(diameter > 0.0)) throw std::invalid_argument("OverlapVolume::hardness_for: the diameter must be positive");
   return kT / (diameter * diameter * diameter * f_scaled(0.8, nullptr));

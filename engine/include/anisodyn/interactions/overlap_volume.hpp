@@ -58,6 +58,11 @@ class OverlapVolume {
 
   /// Centre distance at and beyond which no pair interacts.
   double cutoff() const { return s_.length + s_.diameter; }
+  /// Distance between the two axis segments (length L) at and beyond which no pair interacts, for
+  /// neighbour lists of segments: D for the main branch (either rule), and a little more for the
+  /// near-parallel one, whose pairs have segment distance below √(D² + ε²) with
+  /// ε = L sin²(γ_s/2)/cos(γ_s/2) ≈ D²/(4L), sin γ_s = D/L (derived in overlap_volume.cpp).
+  double segment_cutoff() const;
   /// k with k f(0.8 D) = kT (= 17.7113 kT/D³; spec 20 §4.2).
   static double hardness_for(double diameter, double kT);
 

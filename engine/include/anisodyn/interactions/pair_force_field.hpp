@@ -19,9 +19,10 @@ namespace anisodyn {
 template <class Eval>
 class PairForceField {
  public:
-  /// cutoffs[a·nspecies + b]: the pair cut-off of species a and b; skin > 0 (VerletList).
-  PairForceField(Eval eval, std::vector<double> cutoffs, int nspecies, double skin)
-      : eval_(std::move(eval)), list_(std::move(cutoffs), nspecies, skin) {}
+  /// cutoffs[a·nspecies + b]: the pair cut-off of species a and b; skin > 0; half_lengths: the
+  /// species' segment half-lengths, when the cut-offs are distances between segments (VerletList).
+  PairForceField(Eval eval, std::vector<double> cutoffs, int nspecies, double skin, std::vector<double> half_lengths = {})
+      : eval_(std::move(eval)), list_(std::move(cutoffs), nspecies, skin, std::move(half_lengths)) {}
 
   void operator()(const State& s, BodyForces& out) {
     if constexpr (requires { eval_.prepare(s); }) eval_.prepare(s);
@@ -42,9 +43,8 @@ class PairForceField {
     if constexpr (requires { eval_.prepare(s); }) eval_.prepare(s);
     list_.update(s.box, s.particles);
     for (std::size_t i = 0; i < s.particles.size(); ++i)
-      for (const std::int32_t j : list_.partners(i))
-        if (static_cast<std::size_t>(j) > i)
-          fn(i, static_cast<std::size_t>(j), s.box.min_image(s.particles.position(static_cast<std::size_t>(j)) - s.particles.position(i)));
+      for (const std::int32_t j : list_.partners_above(i))
+        fn(i, static_cast<std::size_t>(j), s.box.min_image(s.particles.position(static_cast<std::size_t>(j)) - s.particles.position(i)));
   }
 
   const Eval& evaluator() const { return eval_; }

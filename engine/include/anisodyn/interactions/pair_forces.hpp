@@ -16,6 +16,14 @@
 // exactly opposite forces, so Newton's third law holds pair by pair, and the results are the same
 // for any thread count. Energy and virial are halved per side and summed over particles in index
 // order, so they are thread-count independent too.
+//
+// Once per pair: an evaluator that declares `static constexpr bool kOncePerPair = true` promises
+// that its term for (i, j) also gives the one for (j, i): exactly −force (every part), the same
+// energy, and the torque on j in `torque_j`, as the call for (j, i) would return them. Its pairs are
+// then evaluated once each (partners above i), the interacting ones recorded by pair number, and
+// each particle sums the records of its partners in the order of its full list, with the signs of
+// its side: the same terms in the same order as owner computes, at half the evaluations, still
+// thread-count independent (both passes write only their own records and particles).
 #include <array>
 #include <vector>
 
@@ -31,8 +39,22 @@ struct PairTerm {
   bool interacts = false;
   std::array<Vec3, Parts> force{};  // on i, by part; the force is their sum
   Vec3 torque = Vec3::Zero();       // on i
+  Vec3 torque_j = Vec3::Zero();     // on j: only from evaluators evaluated once per pair
   double energy = 0.0;              // of the pair (the loop counts half from each side)
 };
+
+/// A pair's term with its separation d = r_j − r_i (evaluators evaluated once per pair).
+template <int Parts>
+struct PairRecord {
+  PairTerm<Parts> term;
+  Vec3 d = Vec3::Zero();
+};
+
+template <class Eval>
+constexpr bool evaluated_once_per_pair() {
+  if constexpr (requires { Eval::kOncePerPair; }) return Eval::kOncePerPair;
+  else return false;
+}
 
 template <int Parts>
 struct PairSums {
@@ -49,7 +71,29 @@ template <int Parts>
 struct PairScratch {
   std::vector<double> energy;
   std::vector<std::array<Mat3, Parts>> virial;
+  std::vector<PairRecord<Parts>> pairs;  // once per pair only: the records of interacting pairs,
+  std::vector<char> interacts;           // and which pairs interact (most listed pairs do not)
 };
+
+namespace detail {
+/// One particle's sums over its pairs.
+template <int Parts>
+struct ParticleSums {
+  Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
+  double energy = 0.0;
+  std::array<Mat3, Parts> virial;
+  ParticleSums() { virial.fill(Mat3::Zero()); }
+  /// Adds the term of the pair (i, j) seen from i; d = r_j − r_i.
+  void add(const PairTerm<Parts>& term, const Vec3& d) {
+    for (std::size_t k = 0; k < static_cast<std::size_t>(Parts); ++k) {
+      force += term.force[k];
+      virial[k] -= 0.5 * d * term.force[k].transpose();  // r_ij = −d
+    }
+    torque += term.torque;
+    energy += 0.5 * term.energy;
+  }
+};
+}  // namespace detail
 
 /// Sets force[i] (and torque[i], if torque is given) to the sum of the pair terms of particle i
 /// over its partners in `list`, which must be up to date; returns energy and virial. `scratch`
@@ -68,28 +112,63 @@ PairSums<Eval::kParts> accumulate_pair_forces(const Box& box, const Particles& p
   partial.virial.resize(n);
   std::vector<double>& energy = partial.energy;
   std::vector<std::array<Mat3, kParts>>& virial = partial.virial;
+  auto store = [&](std::size_t i, const detail::ParticleSums<kParts>& sum) {
+    force[i] = sum.force;
+    if (torque) (*torque)[i] = sum.torque;
+    energy[i] = sum.energy;
+    virial[i] = sum.virial;
+  };
+  if constexpr (evaluated_once_per_pair<Eval>()) {
+    // Records are written for interacting pairs only: writing every listed pair's record made the
+    // loop wait on memory.
+    std::vector<PairRecord<kParts>>& records = partial.pairs;
+    std::vector<char>& interacts = partial.interacts;
+    records.resize(list.pairs());
+    interacts.resize(list.pairs());
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec3 ri = p.position(i);
-    Vec3 f = Vec3::Zero(), t = Vec3::Zero();
-    double e = 0.0;
-    std::array<Mat3, kParts> w;
-    w.fill(Mat3::Zero());
-    for (const std::int32_t j : list.partners(i)) {
-      const Vec3 d = box.min_image(p.position(static_cast<std::size_t>(j)) - ri);
-      const PairTerm<kParts> term = eval(i, static_cast<std::size_t>(j), d, d.squaredNorm());
-      if (!term.interacts) continue;
-      for (int k = 0; k < kParts; ++k) {
-        f += term.force[static_cast<std::size_t>(k)];
-        w[static_cast<std::size_t>(k)] -= 0.5 * d * term.force[static_cast<std::size_t>(k)].transpose();  // r_ij = −d
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec3 ri = p.position(i);
+      std::size_t slot = list.first_pair_above(i);
+      for (const std::int32_t j : list.partners_above(i)) {
+        const Vec3 d = box.min_image(p.position(static_cast<std::size_t>(j)) - ri);
+        const PairTerm<kParts> term = eval(i, static_cast<std::size_t>(j), d, d.squaredNorm());
+        interacts[slot] = term.interacts;
+        if (term.interacts) records[slot] = {term, d};
+        ++slot;
       }
-      t += term.torque;
-      e += 0.5 * term.energy;
     }
-    force[i] = f;
-    if (torque) (*torque)[i] = t;
-    energy[i] = e;
-    virial[i] = w;
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      detail::ParticleSums<kParts> sum;
+      const auto partners = list.partners(i);
+      const auto slots = list.pair_slots(i);
+      for (std::size_t m = 0; m < partners.size(); ++m) {
+        const auto slot = static_cast<std::size_t>(slots[m]);
+        if (!interacts[slot]) continue;
+        const PairRecord<kParts>& r = records[slot];
+        if (static_cast<std::size_t>(partners[m]) > i) {
+          sum.add(r.term, r.d);
+        } else {  // the term of (i, j) from the pair's record (j, i)
+          PairTerm<kParts> mine = r.term;
+          for (Vec3& part : mine.force) part = -part;
+          mine.torque = r.term.torque_j;
+          sum.add(mine, Vec3(-r.d));
+        }
+      }
+      store(i, sum);
+    }
+  } else {
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec3 ri = p.position(i);
+      detail::ParticleSums<kParts> sum;
+      for (const std::int32_t j : list.partners(i)) {
+        const Vec3 d = box.min_image(p.position(static_cast<std::size_t>(j)) - ri);
+        const PairTerm<kParts> term = eval(i, static_cast<std::size_t>(j), d, d.squaredNorm());
+        if (term.interacts) sum.add(term, d);
+      }
+      store(i, sum);
+    }
   }
   PairSums<kParts> sums;
   for (std::size_t i = 0; i < n; ++i) {
