@@ -14,26 +14,19 @@
 import json
 import math
 import os
-import shutil
-import subprocess
 import sys
 
 import h5py
 import numpy as np
 
 bin_dir, tmp, source = sys.argv[1], sys.argv[2], sys.argv[3]
-shutil.rmtree(tmp, ignore_errors=True)
-os.makedirs(tmp)
-os.chdir(tmp)
+sys.path.insert(0, os.path.join(source, "tests", "support"))
+from script_io import enter_scratch, tool_runner, write  # noqa: E402
 
+enter_scratch(tmp)
 
-def run(name, *args):
-    return subprocess.run([os.path.join(bin_dir, name), "-q", *args], capture_output=True, text=True)
+run = tool_runner(bin_dir)
 
-
-def write(name, value):
-    json.dump(value, open(name, "w"))
-    return name
 
 
 rods = {"seed": 3, "placement": "random",

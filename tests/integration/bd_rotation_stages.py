@@ -12,30 +12,23 @@
 argv: [1] build bin dir, [2] scratch dir, [3] source dir."""
 import json
 import os
-import subprocess
 import sys
 
 import h5py
 
-bin_dir, tmp = sys.argv[1], sys.argv[2]
-os.makedirs(tmp, exist_ok=True)
-os.chdir(tmp)
-for f in os.listdir("."):
-    os.remove(f)
+bin_dir, tmp, source = sys.argv[1], sys.argv[2], sys.argv[3]
+sys.path.insert(0, os.path.join(source, "tests", "support"))
+from script_io import enter_scratch, tool_runner, write  # noqa: E402
 
+enter_scratch(tmp)
 
-def run(name, *args):
-    return subprocess.run([os.path.join(bin_dir, name), "-q", *args], capture_output=True, text=True)
+run = tool_runner(bin_dir)
 
 
 def scalar(path, name):
     with h5py.File(path) as f:
         return f["scalars/" + name][...]
 
-
-def write(name, obj):
-    json.dump(obj, open(name, "w"))
-    return name
 
 
 rods = {"seed": 5, "placement": "random",

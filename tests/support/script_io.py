@@ -1,0 +1,26 @@
+"""Small helpers of the integration scripts that drive the tools: a clean scratch directory, running
+a tool quietly, writing a JSON config."""
+import json
+import os
+import shutil
+import subprocess
+
+
+def enter_scratch(tmp):
+    """Makes tmp an empty directory and changes into it."""
+    shutil.rmtree(tmp, ignore_errors=True)
+    os.makedirs(tmp)
+    os.chdir(tmp)
+
+
+def tool_runner(bin_dir):
+    """run(name, *args): the tool of bin_dir with -q, its output captured."""
+    def run(name, *args):
+        return subprocess.run([os.path.join(bin_dir, name), "-q", *args], capture_output=True, text=True)
+    return run
+
+
+def write(name, value):
+    """Writes value as JSON to name and returns name."""
+    json.dump(value, open(name, "w"))
+    return name
