@@ -151,14 +151,31 @@ RestoringTorqueResult RestoringTorqueAnalysis::compute(double free_dr) const {
   r.plateau_lags = window.size();
   r.plateau_t_min = window.empty() ? kNaN : r.lag[window.front()];
   r.plateau_t_max = window.empty() ? kNaN : r.lag[window.back()];
-  // The plateau value: the unweighted mean of the curve over the plateau's lags, jackknifed.
+  // The plateau value: the mean of the curve over the plateau's lags weighted by 1/error² (the
+  // errors of the whole sample, so the weights are fixed while the mean is jackknifed). The curves
+  // divide by C_n, so their noise grows tenfold across a window where C_1 falls from 0.5 to 0.05; an
+  // unweighted mean let the last, noisiest lags decide it. Where a lag has no positive finite error
+  // (free rods: the curve is exact), the lags count equally.
+  auto plateau_weights = [&](std::size_t curve) {
+    std::vector<double> w(window.size(), 1.0);
+    for (std::size_t k = 0; k < window.size(); ++k) {
+      const double e = derived.error[curve * nc + window[k]];
+      if (!(std::isfinite(e) && e > 0)) return std::vector<double>(window.size(), 1.0);
+      w[k] = 1.0 / (e * e);
+    }
+    return w;
+  };
   auto plateau_of = [&](std::size_t curve) {
+    const std::vector<double> w = plateau_weights(curve);
     return jackknife(samples_, [&](const std::vector<double>& m) {
       if (window.empty()) return kNaN;
       const std::vector<double> d = curves(m);
-      double sum = 0;
-      for (std::size_t c : window) sum += d[curve * nc + c];
-      return sum / static_cast<double>(window.size());
+      double sum = 0, weight = 0;
+      for (std::size_t k = 0; k < window.size(); ++k) {
+        sum += w[k] * d[curve * nc + window[k]];
+        weight += w[k];
+      }
+      return sum / weight;
     });
   };
   r.beta_torque_plateau = plateau_of(0);

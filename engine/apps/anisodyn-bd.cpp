@@ -40,8 +40,11 @@ tool::Description description() {
             {"work", "particle-steps"},
             {"amount", {"particles", {{"rule", "time_steps"}}}},  // steps, or time / time_step
             {"rate", 4.5e6},
-            {"measured", "bench/bd_throughput.cpp, 2026-11-24: 1760 free rods, one core, median of 3 (docs/performance.md)"},
-            {"note", "free particles: interactions will lower the rate"}};
+            // With a potential: rods at B3's densest (L/D)φ = 1.76 (440 rods at 0.44 run at 3.1e6).
+            {"rates_when", {{{"present", "potential"}, {"rate", 1.47e6}}}},
+            {"measured", "bench/bd_throughput.cpp, 2026-11-24, one core, medians of 3 (docs/performance.md): 1760 free rods; "
+                         "1760 rods with the overlap-volume potential at (L/D)phi = 1.76"},
+            {"note", "free particles, or the rate of dense interacting rods when a potential is given"}};
   return d;
 }
 

@@ -8,10 +8,11 @@
    its table and scalars, and the reconstructed C1 follows the direct one;
 3. bad input exits 2, names the file and the path, and writes nothing: torque-drag on a run without
    external_torque, restoring-torque on a run without systematic_torque, unknown keys, a plateau
-   given both ways.
+   given both ways, a word that belongs to no option (it used to be dropped silently).
 argv: [1] build bin dir, [2] scratch dir, [3] source dir."""
 import json
 import os
+import shutil
 import sys
 
 import h5py
@@ -79,8 +80,18 @@ with h5py.File("rt.h5") as f:
 print(f"Method III, 150 rods with the potential (random start, {details['capped_torques']:.0f} capped torques): "
       f"D_r(phi)/D_r = {ratio:.4f} ± {error:.4f}; at t = {t[c]:.2f} C1 {c1:.4f}, reconstructed {rec:.4f} (tolerance {tolerance:.4f})")
 
+# One --input takes several files (replicas), as repeating it does.
+shutil.copy("pot.h5", "pot_copy.h5")
+r = run("anisodyn-restoring-torque", "--config", "plateau.json", "--input", "pot.h5", "pot_copy.h5", "--output", "rt2.h5")
+assert r.returncode == 0, r.stderr
+with h5py.File("rt2.h5") as f:
+    assert len(json.loads(f.attrs["inputs"])) == 2, f.attrs["inputs"]
+print("--input pot.h5 pot_copy.h5: two replicas read")
+
 # 3. bad input
 bad = [
+    ("a word that belongs to no option", ["anisodyn-restoring-torque", "--config", "empty.json", "stray_word", "--input", "pot.h5"],
+     ["command line", "stray_word"]),
     ("torque-drag without external_torque", ["anisodyn-torque-drag", "--config", "empty.json", "--input", "pot.h5"],
      ["pot.h5", "/parameters/config", "external_torque"]),
     ("torque-drag: unknown key", ["anisodyn-torque-drag", "--config", write("bad_key.json", {"specis": "rod"}), "--input", "drag.h5"],

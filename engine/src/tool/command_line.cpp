@@ -66,7 +66,8 @@ std::optional<CommonOptions> parse_command_line(int argc, char** argv, const Too
       ("describe", "print what this tool is, reads, writes and takes (JSON) and exit")
       ("config,c", po::value<std::string>(&opt.config_path), "JSON configuration file")
       ("set", po::value<std::vector<std::string>>(&opt.overrides)->composing(), "override a configuration value: key.path=value (repeatable)")
-      ("input,i", po::value<std::vector<std::string>>(&opt.inputs)->composing(), "input file (repeatable)")
+      ("input,i", po::value<std::vector<std::string>>(&opt.inputs)->multitoken()->composing(),
+       "input file(s): --input a.h5 b.h5, or --input repeated")
       ("output,o", po::value<std::string>(&opt.output), "output file")
       ("seed", po::value<std::uint64_t>(&seed), "random seed (overrides the configuration's seed)")
       ("replica", po::value<std::uint64_t>(&replica), "replica index K: an independent random stream derived from (seed, K)")
@@ -75,7 +76,12 @@ std::optional<CommonOptions> parse_command_line(int argc, char** argv, const Too
       ("quiet,q", po::bool_switch(&opt.quiet), "no progress output");
   po::variables_map vm;
   try {
-    po::store(po::command_line_parser(argc, argv).options(desc).run(), vm);
+    const po::parsed_options parsed = po::command_line_parser(argc, argv).options(desc).run();
+    // A word that belongs to no option used to be dropped without a word: `--input a.h5 b.h5`
+    // before --input took several files read a.h5 alone.
+    const std::vector<std::string> stray = po::collect_unrecognized(parsed.options, po::include_positional);
+    if (!stray.empty()) throw InputError("command line", "", "unexpected argument '" + stray.front() + "': every argument belongs to an option (see --help)");
+    po::store(parsed, vm);
     po::notify(vm);
   } catch (const po::error& e) {
     throw InputError("command line", "", std::string(e.what()) + " (see --help)");

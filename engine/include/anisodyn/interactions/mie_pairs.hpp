@@ -46,6 +46,9 @@ double barker_henderson_ratio(const MieCore& core, double kT);
 /// accumulate_pair_forces / PairForceField.
 struct MiePairs {
   static constexpr int kParts = 1;
+  // The term of (j, i) is exactly the negated force and the same energy: d changes sign and r2 does
+  // not, so the loop evaluates each pair once (interactions/pair_forces.hpp), with the same sums.
+  static constexpr bool kOncePerPair = true;
   MieCore core;
   std::vector<double> sigma;  // per species; 0: not interacting
   std::vector<int> species;   // of each particle, refreshed by prepare()

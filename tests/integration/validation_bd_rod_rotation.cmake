@@ -1,0 +1,1 @@
+anisodyn_add_script_test(validation_bd_rod_rotation validation_bd_rod_rotation.py SLOW)
