@@ -8,7 +8,7 @@ replica a lattice melted by its own NVT MC run, DMC (dt_MC = 1e-4 tau) and BD st
 states; BD uses the Mie(n, n-1) core cut at its minimum, beta epsilon = 1, sigma such that the
 Barker-Henderson diameter is 1 (hard spheres of diameter 1 to first order in the softness).
 
-- manifests/validation/bd_dmc_hs.json, the comparison: N = 1000 at eta = 0.20 and 0.30, 8 replicas
+- manifests/validation/bd_dmc_hs.json, the comparison: N = 1000 at eta = 0.20 and 0.30, 20 replicas
   of 10 tau; BD at n = 50, dt = 2e-5 tau.
 - manifests/validation/bd_dmc_hs_bias.json, the bias of that BD: N = 250 at eta = 0.30, 8 replicas
   of 5 tau; BD at n = 50 with dt = 1e-4 ... 5e-6 tau and at n = 100 with dt = 5e-6 tau.
