@@ -1,7 +1,5 @@
 #include "anisodyn/bd/bd_protocol.hpp"
 
-#include "anisodyn/run/step_unit.hpp"
-
 namespace anisodyn {
 
 namespace {
@@ -65,14 +63,7 @@ MieSpec parse_mie(tool::ConfigNode& pot) {
 
 BdProtocol parse_bd_protocol(tool::ConfigNode& cfg) {
   BdProtocol p;
-  p.seed = static_cast<std::uint64_t>(cfg.non_negative_integer("seed", 1));
-  p.time_step = cfg.positive("time_step");
-  cfg.reject_unless(false, "schedule", "in a BD run: there is no field to switch (give the run length as steps or time)");
-  cfg.reject_unless(false, "field", "in a BD run (no external field yet)");
-  const run::StepUnit unit = run::StepUnit::steps();
-  p.segments = run::parse_schedule(cfg, unit, false);
-  p.frames = run::parse_frame_rules(cfg, unit);
-  p.observe_every = cfg.positive_integer("observe_every", 100);
+  static_cast<run::TimeStepRun&>(p) = run::parse_time_step_run(cfg, "BD");
   p.units = parse_units(cfg);
   p.diffusion = io::DiffusionOverrides::parse(cfg);
   if (auto sb = cfg.optional_object("slender_body")) {

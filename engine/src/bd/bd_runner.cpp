@@ -10,10 +10,6 @@
 namespace anisodyn {
 
 namespace {
-run::ProductionSettings production_settings(const BdProtocol& p) {
-  return {p.segments, p.frames, p.observe_every, run::StepUnit::steps(), "bd"};
-}
-
 /// Order tensor S = ⟨ûû⟩ of the rods of species s: xx, yy, zz, xy, xz, yz.
 std::vector<double> order_tensor(const State& st, int s) {
   Mat3 S = Mat3::Zero();
@@ -108,7 +104,7 @@ BdSettings BdRunner::integrator_settings(const std::string& config_file) const {
 }
 
 BdRunner::BdRunner(State& state, const BdProtocol& protocol, const std::string& config_file, bool quiet)
-    : state_(state), protocol_(protocol), production_(state, *this, production_settings(protocol), quiet) {
+    : state_(state), protocol_(protocol), production_(state, *this, run::production_settings(protocol, "bd"), quiet) {
   protocol_.diffusion.check(state_, config_file);
   protocol_.diffusion.apply(state_.species);
   apply_slender_body(state_, protocol_.slender_body, protocol_.units, config_file);

@@ -85,6 +85,13 @@ void place_on_lattice(State& state, const PlacementRequest& req, Rng& rng) {
   }
 }
 
+void place_uniformly(State& state, const PlacementRequest& req, Rng& rng) {
+  std::int64_t id = next_id(state);
+  const Vec3& L = state.box.edges();
+  for (const auto& [s, q] : draw_particles(req, rng))
+    state.particles.add(s, Vec3(rng.uniform() * L.x(), rng.uniform() * L.y(), rng.uniform() * L.z()), q, id++);
+}
+
 void insert_randomly(State& state, const PlacementRequest& req, Rng& rng) {
   const auto particles = draw_particles(req, rng);
   // Largest first: small particles fill the gaps afterwards. (Indices are sorted, not the pairs:

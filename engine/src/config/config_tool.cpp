@@ -74,8 +74,8 @@ State build_configuration(tool::ConfigNode& cfg, const std::optional<State>& exi
     req.counts[s] += static_cast<std::size_t>(e.positive_integer("count"));
     req.rules[s] = parse_orientation(e.optional_object("orientation"), state.species[s].shape);
   }
-  const std::string placement = cfg.choice("placement", {"lattice", "random"}, existing ? "random" : "lattice");
-  cfg.reject_unless(placement == "random", "max_attempts_per_particle", "with lattice placement (it bounds random insertion)");
+  const std::string placement = cfg.choice("placement", {"lattice", "random", "uniform"}, existing ? "random" : "lattice");
+  cfg.reject_unless(placement == "random", "max_attempts_per_particle", "with " + placement + " placement (it bounds random insertion)");
   req.max_attempts_per_particle = static_cast<std::size_t>(cfg.positive_integer("max_attempts_per_particle", 10000));
   if (existing) {
     if (placement != "random") cfg.fail("placement", "expected \"random\" when inserting into an existing configuration");
@@ -105,6 +105,7 @@ State build_configuration(tool::ConfigNode& cfg, const std::optional<State>& exi
   Rng rng(seed, 0x00C0F16ULL + (replica << 32));
   try {
     if (placement == "lattice") place_on_lattice(state, req, rng);
+    else if (placement == "uniform") place_uniformly(state, req, rng);
     else insert_randomly(state, req, rng);
   } catch (const PlacementFailure& e) {
     cfg.fail(existing ? "composition" : "box.packing_fraction", std::string("packing fraction cannot be reached: ") + e.what());

@@ -102,6 +102,12 @@ RigidBodyNve::RigidBodyNve(double dt, std::vector<BodyInertia> inertia, ForceFie
   }
 }
 
+bool RigidBodyNve::any_rotating_species() const {
+  for (const BodyInertia& b : inertia_)
+    if (b.principal_moments.maxCoeff() > 0.0) return true;
+  return false;
+}
+
 void RigidBodyNve::restore_forces(BodyForces forces) {
   if (forces.force.size() != forces.torque.size())
     throw InputError("RigidBodyNve::restore_forces: as many forces as torques needed");
@@ -128,7 +134,10 @@ void RigidBodyNve::evaluate_forces(const State& state) {
 double RigidBodyNve::step(State& state) {
   Particles& p = state.particles;
   if (!p.has_velocities()) p.carry_velocities();
-  if (!p.has_angular_momenta()) p.carry_angular_momenta();
+  // Point bodies (a DPD liquid) neither rotate nor need angular momenta: a state of them alone
+  // is not given any, so its frames stay velocities only.
+  if (!p.has_angular_momenta() && any_rotating_species()) p.carry_angular_momenta();
+  const bool angular = p.has_angular_momenta();
   check_species(p);
   const std::size_t n = p.size();
   if (!have_forces_) evaluate_forces(state);
@@ -149,6 +158,7 @@ double RigidBodyNve::step(State& state) {
     p.set_velocity(i, v);
     p.set_position(i, r);
     p.set_image(i, image);
+    if (!angular) continue;
     Quat q = p.orientation(i);
     Vec3 L = p.angular_momentum(i) + half * forces_.torque[i];
     rotate_freely(b.principal_moments, dt_, q, L);
@@ -162,6 +172,7 @@ double RigidBodyNve::step(State& state) {
   for (std::size_t i = 0; i < n; ++i) {
     const BodyInertia& b = inertia_[static_cast<std::size_t>(p.species[i])];
     p.set_velocity(i, p.velocity(i) + (half / b.mass) * forces_.force[i]);
+    if (!angular) continue;
     p.set_angular_momentum(i, without_frozen_axes(b.principal_moments, p.orientation(i),
                                                   p.angular_momentum(i) + half * forces_.torque[i]));
   }

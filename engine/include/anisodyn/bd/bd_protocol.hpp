@@ -25,6 +25,7 @@
 #include "anisodyn/run/frame_rules.hpp"
 #include "anisodyn/run/pulled_tracer.hpp"
 #include "anisodyn/run/schedule.hpp"
+#include "anisodyn/run/time_step_run.hpp"
 #include "anisodyn/system/state.hpp"
 #include "anisodyn/tool/json_config.hpp"
 #include "anisodyn/tool/unit_system.hpp"
@@ -75,13 +76,7 @@ struct ExternalTorqueSpec {
   std::int64_t record_every = 1;        // steps between rows of the tagged axes
 };
 
-struct BdProtocol {
-  std::uint64_t seed = 1;
-  std::uint64_t replica = 0;
-  double time_step = 0.0;
-  std::vector<run::FieldSegment> segments;  // the run length (BD has no field to switch)
-  run::FrameRules frames;
-  std::int64_t observe_every = 100;
+struct BdProtocol : run::TimeStepRun {
   BdUnits units;
   io::DiffusionOverrides diffusion;
   std::map<std::string, SlenderBodySpec> slender_body;

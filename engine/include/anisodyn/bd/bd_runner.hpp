@@ -20,6 +20,7 @@
 #include "anisodyn/interactions/rod_overlap_pairs.hpp"
 #include "anisodyn/io/h5md.hpp"
 #include "anisodyn/run/production_runner.hpp"
+#include "anisodyn/run/time_step_run.hpp"
 
 namespace anisodyn {
 
@@ -34,7 +35,7 @@ std::vector<BdDiffusion> bd_diffusion(const State& state, const std::string& fil
 void apply_slender_body(State& state, const std::map<std::string, SlenderBodySpec>& slender_body, const BdUnits& units,
                         const std::string& file);
 
-class BdRunner : public run::ProductionClient {
+class BdRunner : public run::FieldlessClient {
  public:
   BdRunner(State& state, const BdProtocol& protocol, const std::string& config_file, bool quiet);
 
@@ -48,8 +49,6 @@ class BdRunner : public run::ProductionClient {
   // run::ProductionClient
   double advance() override;
   void observe(io::H5mdWriter& out, std::int64_t step, double time) override;
-  Vec3 switch_field(bool, std::int64_t) override { return Vec3::Zero(); }  // BD has no field (yet)
-  bool field_on() const override { return false; }
   /// With the rod potential: the systematic torque on each particle at the frame's configuration,
   /// before any cap (spec 20 §6.3, Method III's T̄), as `systematic_torque`.
   std::vector<io::ParticleElement> frame_elements() const override;

@@ -46,6 +46,10 @@ struct PlacementRequest {
 /// axis is the largest axis-aligned extent of any particle, so nothing overlaps.
 void place_on_lattice(State& state, const PlacementRequest& request, Rng& rng);
 
+/// Appends the particles at independent uniformly random positions without any overlap test: an
+/// ideal-gas start for soft particles (a DPD liquid), whose shapes do not exclude each other.
+void place_uniformly(State& state, const PlacementRequest& request, Rng& rng);
+
 /// Appends the particles one by one at uniformly random positions, rejecting positions that
 /// overlap anything already present (largest particles first).
 void insert_randomly(State& state, const PlacementRequest& request, Rng& rng);

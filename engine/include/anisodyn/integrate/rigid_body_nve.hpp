@@ -59,7 +59,8 @@ class RigidBodyNve : public Integrator {
   /// inertia[s] is for species index s; masses must be positive, moments zero or positive.
   RigidBodyNve(double dt, std::vector<BodyInertia> inertia, ForceField force_field, ThermostatHook thermostat = {});
 
-  /// One step (above). A state without velocities or angular momenta is given them, at rest.
+  /// One step (above). A state without velocities is given them, at rest; one without angular
+  /// momenta too, unless every species is a point body (all moments 0), which never rotates.
   /// The step counter and time of the state are left to the caller. Returns dt.
   double step(State& state) override;
 
@@ -75,6 +76,7 @@ class RigidBodyNve : public Integrator {
  private:
   void evaluate_forces(const State& state);
   void check_species(const Particles& p) const;
+  bool any_rotating_species() const;
 
   double dt_;
   std::vector<BodyInertia> inertia_;

@@ -27,14 +27,17 @@ class PairForceField {
   void operator()(const State& s, BodyForces& out) {
     if constexpr (requires { eval_.prepare(s); }) eval_.prepare(s);
     list_.update(s.box, s.particles);
-    const auto sums = accumulate_pair_forces(s.box, s.particles, list_, eval_, force_, &torque_, &scratch_);
+    sums_ = accumulate_pair_forces(s.box, s.particles, list_, eval_, force_, &torque_, &scratch_);
     for (std::size_t i = 0; i < force_.size(); ++i) {
       out.force[i] += force_[i];
       out.torque[i] += torque_[i];
     }
-    out.energy += sums.energy;
-    for (const Mat3& w : sums.virial) out.virial += w;
+    out.energy += sums_.energy;
+    for (const Mat3& w : sums_.virial) out.virial += w;
   }
+
+  /// Energy and virial, by part, of the last evaluation (DPD's stress splits into its parts).
+  const PairSums<Eval::kParts>& last_sums() const { return sums_; }
 
   /// Calls fn(i, j, d) once for every listed pair i < j, d = minimum-image r_j − r_i, after
   /// preparing the evaluator and updating the list for `s` (for observers of pair statistics).
@@ -56,6 +59,7 @@ class PairForceField {
   VerletList list_;
   std::vector<Vec3> force_, torque_;
   PairScratch<Eval::kParts> scratch_;
+  PairSums<Eval::kParts> sums_;
 };
 
 }  // namespace anisodyn

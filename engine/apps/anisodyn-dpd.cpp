@@ -1,0 +1,44 @@
+// anisodyn-dpd: dissipative particle dynamics of a Groot–Warren liquid (spec 30 §2) from an H5MD
+// state to an H5MD trajectory. Frames and observables stream into <output>.partial; checkpoints go
+// to <output>.checkpoint.h5, and running the same command again resumes from it (run/run_files.hpp).
+#include "anisodyn/dpd/dpd_runner.hpp"
+#include "anisodyn/run/engine_main.hpp"
+#include "anisodyn/tool/command_line.hpp"
+
+using namespace anisodyn;
+
+namespace {
+
+tool::Description description() {
+  tool::Description d = tool::engine_description("frames by the frames rules (with velocities), observables every observe_every steps, the summary");
+  d.parameters = {
+      tool::seed_parameter(),
+      tool::required("time_step", "number", "the time step Δt in τ (spec 30: 0.005)"),
+      tool::optional("steps", "integer", nullptr, "run length in steps (or time)"),
+      tool::optional("time", "number", nullptr, "run length in time (or steps)"),
+      tool::optional("kT", "number", 1, "temperature of the thermostat (energy unit)"),
+      tool::required("liquid", "object",
+                     "{species (default: every species), a (25), gamma (4.5), cutoff (1), skin (0.3)}: the Groot–Warren liquid"),
+      tool::optional("velocities", "string", nullptr,
+                     "input | maxwell_boltzmann: where the starting velocities come from (default: the input's if it has them)"),
+      tool::optional("frames", "object", nullptr, "frame rules: every_steps, every_time, log_first_time + log_per_decade, log_steps"),
+      tool::optional("observe_every", "integer", 100, "steps between observation rows (each the mean over its steps)"),
+  };
+  // Work of a job = particles x steps; rate: 24000 liquid particles, one core, bench/dpd_throughput.cpp.
+  d.cost = {{"kind", "model"},
+            {"work", "particle-steps"},
+            {"amount", {"particles", {{"rule", "time_steps"}}}},
+            {"rate", 1.0e6},
+            {"measured", "bench/dpd_throughput.cpp, 2026-11-24: 24000 particles at rho = 3, gamma = 4.5, one core (docs/performance.md)"},
+            {"note", "pure liquid"}};
+  return d;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const tool::ToolInfo info{"anisodyn-dpd", "Dissipative particle dynamics of a Groot–Warren liquid", "See docs/dpd.md.", description()};
+  return tool::run_tool(argc, argv, info, [&](tool::CommonOptions& opt) {
+    run::run_production_engine<DpdRunner, DpdProtocol>(opt, info, &parse_dpd_protocol);
+  });
+}

@@ -1,0 +1,226 @@
+#include "anisodyn/dpd/dpd_runner.hpp"
+
+#include <cmath>
+
+#include "anisodyn/core/error.hpp"
+#include "anisodyn/core/keyed_random.hpp"
+
+namespace anisodyn {
+
+namespace {
+
+/// Purpose tags of the run's other keyed draws ("DPDSEED", "DPDVELO").
+constexpr std::uint64_t kReplicaSeed = 0x44504453454544ULL;
+constexpr std::uint64_t kStartVelocities = 0x44504456454c4fULL;
+
+/// The key of replica K's draws: independent streams of one seed.
+std::uint64_t replica_seed(std::uint64_t seed, std::uint64_t replica) { return KeyedRandom(seed, kReplicaSeed).block(replica, 0, 0, 0)[0]; }
+
+std::vector<double> six(const Mat3& m) { return {m(0, 0), m(1, 1), m(2, 2), m(0, 1), m(0, 2), m(1, 2)}; }
+
+nlohmann::json mat_json(const Mat3& m) { return std::vector<double>(m.data(), m.data() + 9); }
+Mat3 mat_from(const nlohmann::json& j) {
+  const auto v = j.get<std::vector<double>>();
+  return Eigen::Map<const Mat3>(v.data());
+}
+
+}  // namespace
+
+nlohmann::json DpdRowSums::to_json() const {
+  return {{"steps", steps},
+          {"kinetic_temperature", kinetic_temperature},
+          {"potential_energy", potential_energy},
+          {"kinetic", mat_json(kinetic)},
+          {"virial", {mat_json(virial[0]), mat_json(virial[1]), mat_json(virial[2])}}};
+}
+
+DpdRowSums DpdRowSums::from_json(const nlohmann::json& j) {
+  DpdRowSums r;
+  r.steps = j.at("steps").get<std::int64_t>();
+  r.kinetic_temperature = j.at("kinetic_temperature").get<double>();
+  r.potential_energy = j.at("potential_energy").get<double>();
+  r.kinetic = mat_from(j.at("kinetic"));
+  for (int k = 0; k < 3; ++k) r.virial[static_cast<std::size_t>(k)] = mat_from(j.at("virial")[static_cast<std::size_t>(k)]);
+  return r;
+}
+
+std::vector<char> DpdRunner::liquid_species(const std::string& config_file) const {
+  std::vector<char> liquid(state_.species.size(), protocol_.liquid_species.empty() ? 1 : 0);
+  for (std::size_t k = 0; k < protocol_.liquid_species.size(); ++k) {
+    const int s = species_index(state_.species, protocol_.liquid_species[k]);
+    if (s < 0)
+      throw InputError(config_file, "liquid.species[" + std::to_string(k) + "]",
+                       "unknown species '" + protocol_.liquid_species[k] + "': expected one of the input's species");
+    liquid[static_cast<std::size_t>(s)] = 1;
+  }
+  for (std::size_t s = 0; s < liquid.size(); ++s) {
+    if (liquid[s] && state_.species[s].shape.is_anisotropic())
+      throw InputError(config_file, "liquid.species", "expected point-like liquid particles (a sphere species); '" +
+                                                          state_.species[s].name + "' is not a sphere");
+    if (!liquid[s])
+      throw InputError(config_file, "liquid.species", "every species of the input must be a liquid species: colloids are not "
+                                                      "implemented yet (species '" + state_.species[s].name + "')");
+  }
+  return liquid;
+}
+
+void DpdRunner::start_velocities() {
+  Particles& p = state_.particles;
+  if (protocol_.velocities == DpdProtocol::Velocities::Input ||
+      (protocol_.velocities == DpdProtocol::Velocities::Default && p.has_velocities())) {
+    summary_["start_velocities"] = "input";
+    return;
+  }
+  // Maxwell–Boltzmann at kT, keyed by particle id (any particle order gives the same velocities),
+  // then the mean momentum removed so that the liquid does not drift.
+  p.carry_velocities();
+  const KeyedRandom draw(replica_seed(protocol_.seed, protocol_.replica), kStartVelocities);
+  Vec3 momentum = Vec3::Zero();
+  double mass = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    double z[3];
+    draw.normals(0, static_cast<std::uint64_t>(p.id[i]), 0, z, 3);
+    const double m = state_.species[static_cast<std::size_t>(p.species[i])].mass;
+    const Vec3 v = std::sqrt(protocol_.liquid.kT / m) * Vec3(z[0], z[1], z[2]);
+    p.set_velocity(i, v);
+    momentum += m * v;
+    mass += m;
+  }
+  for (std::size_t i = 0; i < p.size(); ++i) p.set_velocity(i, p.velocity(i) - momentum / mass);
+  summary_["start_velocities"] = "maxwell_boltzmann";
+}
+
+DpdRunner::DpdRunner(State& state, const DpdProtocol& protocol, const std::string& config_file, bool quiet)
+    : state_(state), protocol_(protocol), production_(state, *this, run::production_settings(protocol, "dpd"), quiet) {
+  const std::vector<char> liquid = liquid_species(config_file);
+  const double reach = protocol_.liquid.cutoff + protocol_.skin;
+  if (!(state_.box.edges().minCoeff() >= 2.0 * reach))
+    throw InputError(config_file, "liquid.cutoff", "expected a box at least twice the cut-off plus the skin (" + std::to_string(2.0 * reach) +
+                                                       ") along every edge, for the minimum image");
+  for (const Species& sp : state_.species)
+    if (!(sp.mass > 0.0)) throw InputError(config_file, "liquid.species", "expected a positive mass for species '" + sp.name + "'");
+  // Checked here, where an error still writes nothing; the velocities are drawn when a fresh run
+  // starts (a resumed one has the checkpoint's).
+  if (protocol_.velocities == DpdProtocol::Velocities::Input && !state_.particles.has_velocities())
+    throw InputError(config_file, "velocities", "\"input\", but the input state has no velocities: use \"maxwell_boltzmann\"");
+
+  const std::uint64_t seed = replica_seed(protocol_.seed, protocol_.replica);
+  DpdPairs eval(protocol_.liquid, protocol_.time_step, seed, liquid);
+  const int ns = static_cast<int>(state_.species.size());
+  pairs_ = std::make_unique<PairForceField<DpdPairs>>(eval, eval.cutoffs(), ns, protocol_.skin);
+  std::vector<BodyInertia> inertia;
+  for (const Species& sp : state_.species) inertia.push_back({sp.mass, Vec3::Zero()});  // point particles
+  integrator_ = std::make_unique<RigidBodyNve>(protocol_.time_step, inertia, [this](const State& s, BodyForces& out) { (*pairs_)(s, out); });
+
+  const DpdParameters& d = protocol_.liquid;
+  summary_["liquid"] = {{"a", d.a}, {"gamma", d.gamma}, {"kT", d.kT}, {"cutoff", d.cutoff}, {"skin", protocol_.skin},
+                        {"noise_amplitude", std::sqrt(2.0 * d.gamma * d.kT)}};
+  summary_["particles"] = state_.particles.size();
+  summary_["density"] = static_cast<double>(state_.particles.size()) / state_.box.volume();
+}
+
+double DpdRunner::advance() {
+  pairs_->evaluator().noise_step = static_cast<std::uint64_t>(production_.step()) + 1;
+  const double dt = integrator_->step(state_);
+  add_to_row();
+  return dt;
+}
+
+void DpdRunner::add_to_row() {
+  const Particles& p = state_.particles;
+  Mat3 kinetic = Mat3::Zero();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Vec3 v = p.velocity(i);
+    kinetic += state_.species[static_cast<std::size_t>(p.species[i])].mass * (v * v.transpose());
+  }
+  const double n = static_cast<double>(p.size());
+  const auto& sums = pairs_->last_sums();
+  row_.steps += 1;
+  row_.kinetic += kinetic;
+  row_.kinetic_temperature += kinetic.trace() / (3.0 * (n - 1.0));
+  row_.potential_energy += sums.energy / n;
+  for (std::size_t k = 0; k < 3; ++k) row_.virial[k] += sums.virial[k];
+}
+
+void DpdRunner::observe(io::H5mdWriter& out, std::int64_t step, double t) {
+  if (row_.steps == 0) return;
+  const double steps = static_cast<double>(row_.steps), volume = state_.box.volume();
+  const Mat3 kinetic = row_.kinetic / (steps * volume);
+  std::array<Mat3, 3> parts;
+  for (std::size_t k = 0; k < 3; ++k) parts[k] = row_.virial[k] / (steps * volume);
+  const Mat3 total = kinetic + parts[0] + parts[1] + parts[2];
+  out.append_observable("kinetic_temperature", step, t, row_.kinetic_temperature / steps);
+  out.append_observable("pressure", step, t, total.trace() / 3.0);
+  out.append_observable("pressure_tensor_kinetic", step, t, six(kinetic));
+  out.append_observable("pressure_tensor_conservative", step, t, six(parts[0]));
+  out.append_observable("pressure_tensor_dissipative", step, t, six(parts[1]));
+  out.append_observable("pressure_tensor_random", step, t, six(parts[2]));
+  out.append_observable("potential_energy", step, t, row_.potential_energy / steps);
+  Vec3 momentum = Vec3::Zero();
+  const Particles& p = state_.particles;
+  for (std::size_t i = 0; i < p.size(); ++i) momentum += state_.species[static_cast<std::size_t>(p.species[i])].mass * p.velocity(i);
+  out.append_observable("momentum", step, t, std::vector<double>{momentum.x(), momentum.y(), momentum.z()});
+  row_ = DpdRowSums{};
+  if (attributes_written_) return;
+  auto attr = [&](const std::string& name, const std::string& units, const std::string& definition) {
+    out.set_observable_attribute(name, "units", units);
+    out.set_observable_attribute(name, "definition", definition);
+  };
+  const std::string tensor = ": xx, yy, zz, xy, xz, yz, mean over the row's steps (velocities and forces of each step's end)";
+  attr("kinetic_temperature", "kT", "sum of m v^2 / (3 (N - 1)) over the particles, full-step velocities, mean over the row's steps");
+  attr("pressure", "kT/r_c^3", "trace/3 of the pressure tensor (the sum of the four parts), mean over the row's steps");
+  attr("pressure_tensor_kinetic", "kT/r_c^3", "sum of m v v / V" + tensor);
+  attr("pressure_tensor_conservative", "kT/r_c^3", "sum over pairs of r_ij F^C_ij / V" + tensor);
+  attr("pressure_tensor_dissipative", "kT/r_c^3", "sum over pairs of r_ij F^D_ij / V (half-step velocities)" + tensor);
+  attr("pressure_tensor_random", "kT/r_c^3", "sum over pairs of r_ij F^R_ij / V" + tensor);
+  attr("potential_energy", "kT", "conservative energy per particle, sum of a r_c (1 - r/r_c)^2 / 2 over pairs, mean over the row's steps");
+  attr("momentum", "m r_c/tau", "total momentum sum m v at the row's last step (x, y, z)");
+  attributes_written_ = true;
+}
+
+void DpdRunner::start() {
+  start_velocities();
+  // The starting forces, with the noise of step 0 (those after the drift of step n take n + 1).
+  BodyForces forces;
+  forces.reset(state_.particles.size());
+  pairs_->evaluator().noise_step = 0;
+  (*pairs_)(state_, forces);
+  integrator_->restore_forces(std::move(forces));
+}
+
+void DpdRunner::run(io::H5mdWriter& out, std::int64_t checkpoint_every, const std::function<void()>& checkpoint) {
+  if (!restored_) start();
+  run::CheckpointClock checkpoints(checkpoint_every, checkpoint);
+  production_.run(out, checkpoints, 0);
+  summary_["steps"] = production_.step();
+  summary_["time"] = production_.time();
+  summary_["time_step"] = protocol_.time_step;
+}
+
+nlohmann::json DpdRunner::checkpoint_state() const {
+  const BodyForces& f = integrator_->forces();
+  std::vector<double> force;
+  force.reserve(3 * f.force.size());
+  for (const Vec3& v : f.force) force.insert(force.end(), {v.x(), v.y(), v.z()});
+  return {{"production", production_.checkpoint_state()},
+          {"row", row_.to_json()},
+          {"forces", {{"force", force}, {"energy", f.energy}, {"virial", mat_json(f.virial)}}},
+          {"summary", summary_}};
+}
+
+void DpdRunner::restore(const nlohmann::json& j) {
+  restored_ = true;
+  production_.restore(j.at("production"));
+  row_ = DpdRowSums::from_json(j.at("row"));
+  const auto& f = j.at("forces");
+  const auto force = f.at("force").get<std::vector<double>>();
+  BodyForces forces;
+  forces.reset(force.size() / 3);
+  for (std::size_t i = 0; i < forces.force.size(); ++i) forces.force[i] = Vec3(force[3 * i], force[3 * i + 1], force[3 * i + 2]);
+  forces.energy = f.at("energy").get<double>();
+  forces.virial = mat_from(f.at("virial"));
+  integrator_->restore_forces(std::move(forces));
+  summary_ = j.at("summary");
+}
+
+}  // namespace anisodyn

@@ -1,0 +1,168 @@
+// The DPD pair forces (interactions/dpd_pairs.hpp) through PairForceField against an independent
+// O(N²) sum written here from spec 30 §2, part by part; the conservative force against central
+// differences of the pair energy; Newton's third law; the virial by part against Σ r_ij F_ij; the
+// pair noise symmetric in (i, j) and of unit variance; and the same bits for one and two threads.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <omp.h>
+
+#include "anisodyn/core/keyed_random.hpp"
+#include "anisodyn/core/rng.hpp"
+#include "anisodyn/interactions/dpd_pairs.hpp"
+#include "anisodyn/interactions/pair_force_field.hpp"
+
+using namespace anisodyn;
+
+namespace {
+
+constexpr double kA = 25.0, kGamma = 4.5, kDt = 0.005;
+constexpr std::uint64_t kSeed = 17;
+
+/// n liquid particles at density 3 in a cubic box, random positions and velocities; ids shuffled
+/// away from the indices so that the noise is keyed by id, not by position in the arrays.
+State liquid(std::size_t n, double edge, std::uint64_t seed) {
+  State s;
+  s.species = {Species{"liquid", Shape::sphere(1.0), 1.0, {}, {}}};
+  s.box = Box(Vec3::Constant(edge));
+  Rng rng(seed, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    s.particles.add(0, Vec3(rng.uniform(0, edge), rng.uniform(0, edge), rng.uniform(0, edge)), Quat::Identity(),
+                    static_cast<std::int64_t>(7 * n - 3 * i));
+  s.particles.carry_velocities();
+  for (std::size_t i = 0; i < n; ++i) s.particles.set_velocity(i, Vec3(rng.normal(), rng.normal(), rng.normal()));
+  return s;
+}
+
+PairForceField<DpdPairs> field(std::uint64_t step) {
+  DpdPairs eval({kA, kGamma, 1.0, 1.0}, kDt, kSeed, {1});
+  eval.noise_step = step;
+  return PairForceField<DpdPairs>(eval, eval.cutoffs(), 1, 0.3);
+}
+
+struct Reference {
+  std::vector<std::array<Vec3, 3>> force;  // by part
+  std::array<Mat3, 3> virial{Mat3::Zero(), Mat3::Zero(), Mat3::Zero()};
+  double energy = 0.0;
+  int pairs = 0;
+};
+
+/// Spec 30 §2 summed over all pairs i < j.
+Reference reference(const State& s, std::uint64_t step) {
+  const KeyedRandom noise(kSeed, kDpdPairNoise);
+  const Particles& p = s.particles;
+  Reference out;
+  out.force.assign(p.size(), {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
+  for (std::size_t i = 0; i < p.size(); ++i)
+    for (std::size_t j = i + 1; j < p.size(); ++j) {
+      const Vec3 rij = s.box.min_image(p.position(i) - p.position(j));
+      const double r = rij.norm();
+      if (r >= 1.0) continue;
+      ++out.pairs;
+      const Vec3 e = rij / r;
+      const double w = 1.0 - r;
+      const double theta = noise.normal(step, static_cast<std::uint64_t>(std::min(p.id[i], p.id[j])),
+                                        static_cast<std::uint64_t>(std::max(p.id[i], p.id[j])), 0);
+      const std::array<Vec3, 3> f{kA * w * e, -kGamma * w * w * e.dot(p.velocity(i) - p.velocity(j)) * e,
+                                  std::sqrt(2.0 * kGamma / kDt) * w * theta * e};
+      for (int k = 0; k < 3; ++k) {
+        out.force[i][static_cast<std::size_t>(k)] += f[static_cast<std::size_t>(k)];
+        out.force[j][static_cast<std::size_t>(k)] -= f[static_cast<std::size_t>(k)];
+        out.virial[static_cast<std::size_t>(k)] += rij * f[static_cast<std::size_t>(k)].transpose();
+      }
+      out.energy += 0.5 * kA * w * w;
+    }
+  return out;
+}
+
+BodyForces evaluate(PairForceField<DpdPairs>& f, const State& s) {
+  BodyForces out;
+  out.reset(s.particles.size());
+  f(s, out);
+  return out;
+}
+
+}  // namespace
+
+TEST(DpdPairs, ForcesEnergyAndVirialEqualTheAllPairsSumPartByPart) {
+  const State s = liquid(648, 6.0, 3);
+  auto f = field(41);
+  const BodyForces got = evaluate(f, s);
+  const Reference ref = reference(s, 41);
+  ASSERT_GT(ref.pairs, 1500);
+  EXPECT_NEAR(got.energy, ref.energy, 1e-10 * ref.energy);
+  for (std::size_t i = 0; i < s.particles.size(); ++i) {
+    const Vec3 total = ref.force[i][0] + ref.force[i][1] + ref.force[i][2];
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(got.force[i][k], total[k], 1e-9 * (1.0 + total.norm())) << i;
+  }
+  const auto& parts = f.last_sums().virial;
+  for (std::size_t k = 0; k < 3; ++k)
+    EXPECT_LT((parts[k] - ref.virial[k]).norm(), 1e-9 * (1.0 + ref.virial[k].norm())) << "part " << k;
+}
+
+TEST(DpdPairs, ConservativeForceIsMinusTheGradientOfTheEnergy) {
+  // γ = 0 leaves the conservative part: F_i = −∂U/∂r_i by central differences.
+  State s = liquid(200, 4.0, 5);
+  DpdPairs eval({kA, 0.0, 1.0, 1.0}, kDt, kSeed, {1});
+  PairForceField<DpdPairs> f(eval, eval.cutoffs(), 1, 0.3);
+  const BodyForces got = evaluate(f, s);
+  const double h = 1e-6;
+  for (std::size_t i : {0u, 17u, 99u, 150u})
+    for (int k = 0; k < 3; ++k) {
+      State plus = s, minus = s;
+      Vec3 r = s.particles.position(i);
+      r[k] += h;
+      plus.particles.set_position(i, r);
+      r[k] -= 2 * h;
+      minus.particles.set_position(i, r);
+      PairForceField<DpdPairs> fp(eval, eval.cutoffs(), 1, 0.3), fm(eval, eval.cutoffs(), 1, 0.3);
+      const double derivative = (evaluate(fp, plus).energy - evaluate(fm, minus).energy) / (2 * h);
+      EXPECT_NEAR(got.force[i][k], -derivative, 1e-5 * (1.0 + std::abs(derivative))) << i << " " << k;
+    }
+}
+
+TEST(DpdPairs, NewtonsThirdLawHoldsPairByPair) {
+  const State s = liquid(648, 6.0, 7);
+  auto f = field(3);
+  const BodyForces got = evaluate(f, s);
+  Vec3 sum = Vec3::Zero();
+  double scale = 0.0;
+  for (const Vec3& v : got.force) {
+    sum += v;
+    scale += v.norm();
+  }
+  EXPECT_LT(sum.norm(), 1e-12 * scale);
+}
+
+TEST(DpdPairs, PairNoiseIsSymmetricUnitNormalAndNewEachStep) {
+  const KeyedRandom noise(kSeed, kDpdPairNoise);
+  double sum = 0, sum2 = 0, lag = 0;
+  const int n = 200000;
+  for (int k = 0; k < n; ++k) {
+    const auto i = static_cast<std::uint64_t>(k % 1000), j = static_cast<std::uint64_t>(1000 + k / 1000);
+    const double x = noise.pair_normal(5, i, j);
+    ASSERT_EQ(x, noise.pair_normal(5, j, i));
+    sum += x;
+    sum2 += x * x;
+    lag += x * noise.pair_normal(6, i, j);
+  }
+  // Mean 0, variance 1 and no correlation between steps, each within 4 standard errors.
+  EXPECT_LT(std::abs(sum / n), 4.0 / std::sqrt(n));
+  EXPECT_LT(std::abs(sum2 / n - 1.0), 4.0 * std::sqrt(2.0 / n));
+  EXPECT_LT(std::abs(lag / n), 4.0 / std::sqrt(n));
+}
+
+TEST(DpdPairs, ForcesAreTheSameBitsForOneAndTwoThreads) {
+  const State s = liquid(1536, 8.0, 9);
+  std::vector<BodyForces> results;
+  for (int threads : {1, 2}) {
+    omp_set_num_threads(threads);
+    auto f = field(12);
+    results.push_back(evaluate(f, s));
+  }
+  omp_set_num_threads(1);
+  for (std::size_t i = 0; i < s.particles.size(); ++i) ASSERT_EQ(results[0].force[i], results[1].force[i]) << i;
+  EXPECT_EQ(results[0].energy, results[1].energy);
+  EXPECT_EQ(results[0].virial, results[1].virial);
+}
