@@ -1,4 +1,4 @@
-// The DPD pair forces (interactions/dpd_pairs.hpp) through PairForceField against an independent
+// The DPD pair forces (interactions/dpd_pairs.hpp, DpdForceField) against an independent
 // O(N²) sum written here from spec 30 §2, part by part; the conservative force against central
 // differences of the pair energy; Newton's third law; the virial by part against Σ r_ij F_ij; the
 // pair noise symmetric in (i, j) and of unit variance; and the same bits for one and two threads.
@@ -11,7 +11,6 @@
 #include "anisodyn/core/keyed_random.hpp"
 #include "anisodyn/core/rng.hpp"
 #include "anisodyn/interactions/dpd_pairs.hpp"
-#include "anisodyn/interactions/pair_force_field.hpp"
 
 using namespace anisodyn;
 
@@ -35,10 +34,10 @@ State liquid(std::size_t n, double edge, std::uint64_t seed) {
   return s;
 }
 
-PairForceField<DpdPairs> field(std::uint64_t step) {
-  DpdPairs eval({kA, kGamma, 1.0, 1.0}, kDt, kSeed, {1});
-  eval.noise_step = step;
-  return PairForceField<DpdPairs>(eval, eval.cutoffs(), 1, 0.3);
+DpdForceField field(std::uint64_t step, double gamma = kGamma) {
+  DpdForceField f({kA, gamma, 1.0, 1.0}, kDt, kSeed, 1, 0.3);
+  f.set_noise_step(step);
+  return f;
 }
 
 struct Reference {
@@ -76,7 +75,7 @@ Reference reference(const State& s, std::uint64_t step) {
   return out;
 }
 
-BodyForces evaluate(PairForceField<DpdPairs>& f, const State& s) {
+BodyForces evaluate(DpdForceField& f, const State& s) {
   BodyForces out;
   out.reset(s.particles.size());
   f(s, out);
@@ -104,8 +103,7 @@ TEST(DpdPairs, ForcesEnergyAndVirialEqualTheAllPairsSumPartByPart) {
 TEST(DpdPairs, ConservativeForceIsMinusTheGradientOfTheEnergy) {
   // γ = 0 leaves the conservative part: F_i = −∂U/∂r_i by central differences.
   State s = liquid(200, 4.0, 5);
-  DpdPairs eval({kA, 0.0, 1.0, 1.0}, kDt, kSeed, {1});
-  PairForceField<DpdPairs> f(eval, eval.cutoffs(), 1, 0.3);
+  auto f = field(0, 0.0);
   const BodyForces got = evaluate(f, s);
   const double h = 1e-6;
   for (std::size_t i : {0u, 17u, 99u, 150u})
@@ -116,7 +114,7 @@ TEST(DpdPairs, ConservativeForceIsMinusTheGradientOfTheEnergy) {
       plus.particles.set_position(i, r);
       r[k] -= 2 * h;
       minus.particles.set_position(i, r);
-      PairForceField<DpdPairs> fp(eval, eval.cutoffs(), 1, 0.3), fm(eval, eval.cutoffs(), 1, 0.3);
+      auto fp = field(0, 0.0), fm = field(0, 0.0);
       const double derivative = (evaluate(fp, plus).energy - evaluate(fm, minus).energy) / (2 * h);
       EXPECT_NEAR(got.force[i][k], -derivative, 1e-5 * (1.0 + std::abs(derivative))) << i << " " << k;
     }

@@ -44,7 +44,7 @@ DpdRowSums DpdRowSums::from_json(const nlohmann::json& j) {
   return r;
 }
 
-std::vector<char> DpdRunner::liquid_species(const std::string& config_file) const {
+void DpdRunner::check_liquid_species(const std::string& config_file) const {
   std::vector<char> liquid(state_.species.size(), protocol_.liquid_species.empty() ? 1 : 0);
   for (std::size_t k = 0; k < protocol_.liquid_species.size(); ++k) {
     const int s = species_index(state_.species, protocol_.liquid_species[k]);
@@ -61,7 +61,6 @@ std::vector<char> DpdRunner::liquid_species(const std::string& config_file) cons
       throw InputError(config_file, "liquid.species", "every species of the input must be a liquid species: colloids are not "
                                                       "implemented yet (species '" + state_.species[s].name + "')");
   }
-  return liquid;
 }
 
 void DpdRunner::start_velocities() {
@@ -92,7 +91,7 @@ void DpdRunner::start_velocities() {
 
 DpdRunner::DpdRunner(State& state, const DpdProtocol& protocol, const std::string& config_file, bool quiet)
     : state_(state), protocol_(protocol), production_(state, *this, run::production_settings(protocol, "dpd"), quiet) {
-  const std::vector<char> liquid = liquid_species(config_file);
+  check_liquid_species(config_file);
   const double reach = protocol_.liquid.cutoff + protocol_.skin;
   if (!(state_.box.edges().minCoeff() >= 2.0 * reach))
     throw InputError(config_file, "liquid.cutoff", "expected a box at least twice the cut-off plus the skin (" + std::to_string(2.0 * reach) +
@@ -105,9 +104,7 @@ DpdRunner::DpdRunner(State& state, const DpdProtocol& protocol, const std::strin
     throw InputError(config_file, "velocities", "\"input\", but the input state has no velocities: use \"maxwell_boltzmann\"");
 
   const std::uint64_t seed = replica_seed(protocol_.seed, protocol_.replica);
-  DpdPairs eval(protocol_.liquid, protocol_.time_step, seed, liquid);
-  const int ns = static_cast<int>(state_.species.size());
-  pairs_ = std::make_unique<PairForceField<DpdPairs>>(eval, eval.cutoffs(), ns, protocol_.skin);
+  pairs_ = std::make_unique<DpdForceField>(protocol_.liquid, protocol_.time_step, seed, static_cast<int>(state_.species.size()), protocol_.skin);
   std::vector<BodyInertia> inertia;
   for (const Species& sp : state_.species) inertia.push_back({sp.mass, Vec3::Zero()});  // point particles
   integrator_ = std::make_unique<RigidBodyNve>(protocol_.time_step, inertia, [this](const State& s, BodyForces& out) { (*pairs_)(s, out); });
@@ -120,7 +117,7 @@ DpdRunner::DpdRunner(State& state, const DpdProtocol& protocol, const std::strin
 }
 
 double DpdRunner::advance() {
-  pairs_->evaluator().noise_step = static_cast<std::uint64_t>(production_.step()) + 1;
+  pairs_->set_noise_step(static_cast<std::uint64_t>(production_.step()) + 1);
   const double dt = integrator_->step(state_);
   add_to_row();
   return dt;
@@ -183,7 +180,7 @@ void DpdRunner::start() {
   // The starting forces, with the noise of step 0 (those after the drift of step n take n + 1).
   BodyForces forces;
   forces.reset(state_.particles.size());
-  pairs_->evaluator().noise_step = 0;
+  pairs_->set_noise_step(0);
   (*pairs_)(state_, forces);
   integrator_->restore_forces(std::move(forces));
 }

@@ -100,16 +100,38 @@ void VerletList::build_from_cells(const Box& box, const Particles& p, std::vecto
   for (int s = 0; s < nspecies_; ++s) self[static_cast<std::size_t>(s)] = cutoff(s, s) + skin_;
   CellList cells;
   cells.build(box, p.x, p.y, p.z, p.species, self);
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const std::size_t first = upper.size();
-    const int a = p.species[i];
-    for (int b = 0; b < nspecies_; ++b)
-      cells.visit(b, p.position(i), cutoff(a, b) + skin_, [&](std::int32_t j, const Vec3&, double) {
-        if (static_cast<std::size_t>(j) > i) upper.push_back(j);
-        return false;
-      });
-    std::sort(upper.begin() + static_cast<std::ptrdiff_t>(first), upper.end());
-    upper_end[i] = upper.size();
+  // Each thread lists the rows of a contiguous block of particles into its own buffer; the blocks
+  // are joined in order, so the list is the same for any thread count (a DPD liquid rebuilds its
+  // list every few steps, and a serial build capped the two-thread speed-up).
+  const std::size_t n = p.size();
+  int blocks = 1;
+#ifdef _OPENMP
+  blocks = omp_get_max_threads();
+#endif
+  std::vector<std::vector<std::int32_t>> found(static_cast<std::size_t>(blocks));
+#pragma omp parallel for schedule(static, 1) num_threads(blocks)
+  for (int k = 0; k < blocks; ++k) {
+    std::vector<std::int32_t>& mine = found[static_cast<std::size_t>(k)];
+    const std::size_t begin = n * static_cast<std::size_t>(k) / static_cast<std::size_t>(blocks);
+    const std::size_t end = n * (static_cast<std::size_t>(k) + 1) / static_cast<std::size_t>(blocks);
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::size_t first = mine.size();
+      const int a = p.species[i];
+      for (int b = 0; b < nspecies_; ++b)
+        cells.visit(b, p.position(i), cutoff(a, b) + skin_, [&](std::int32_t j, const Vec3&, double) {
+          if (static_cast<std::size_t>(j) > i) mine.push_back(j);
+          return false;
+        });
+      std::sort(mine.begin() + static_cast<std::ptrdiff_t>(first), mine.end());
+      upper_end[i] = mine.size();  // within the block, for now
+    }
+  }
+  for (int k = 0; k < blocks; ++k) {
+    const std::size_t offset = upper.size();
+    const std::size_t begin = n * static_cast<std::size_t>(k) / static_cast<std::size_t>(blocks);
+    const std::size_t end = n * (static_cast<std::size_t>(k) + 1) / static_cast<std::size_t>(blocks);
+    for (std::size_t i = begin; i < end; ++i) upper_end[i] += offset;
+    upper.insert(upper.end(), found[static_cast<std::size_t>(k)].begin(), found[static_cast<std::size_t>(k)].end());
   }
 }
 

@@ -38,11 +38,15 @@ class KeyedRandom {
     return to_unit(block(step, a, b, k / 4)[k % 4]);
   }
 
-  /// Standard normal draw k of counter (step, a, b).
+  /// Standard normal draw k of counter (step, a, b): the one Box–Muller branch it needs (the same
+  /// value as normals() gives; a DPD pair uses one draw, and the other three branches would double
+  /// the cost of its noise).
   double normal(std::uint64_t step, std::uint64_t a, std::uint64_t b, std::uint64_t k) const {
-    std::array<double, 4> z;
-    normal_block(step, a, b, k / 4, z);
-    return z[k % 4];
+    const auto w = block(step, a, b, k / 4);
+    const std::size_t p = (k % 4) / 2;
+    const double r = std::sqrt(-2.0 * std::log((static_cast<double>(w[2 * p] >> 11) + 1.0) * 0x1.0p-53));
+    const double phi = 2.0 * M_PI * to_unit(w[2 * p + 1]);
+    return k % 2 == 0 ? r * std::cos(phi) : r * std::sin(phi);
   }
 
   /// Normal draws 0 … n−1 of counter (step, a, b) into out (the same values as normal(…, k)).

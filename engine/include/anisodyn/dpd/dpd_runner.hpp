@@ -22,7 +22,6 @@
 #include "anisodyn/dpd/dpd_protocol.hpp"
 #include "anisodyn/integrate/rigid_body_nve.hpp"
 #include "anisodyn/interactions/dpd_pairs.hpp"
-#include "anisodyn/interactions/pair_force_field.hpp"
 #include "anisodyn/io/h5md.hpp"
 #include "anisodyn/run/production_runner.hpp"
 #include "anisodyn/run/time_step_run.hpp"
@@ -55,7 +54,8 @@ class DpdRunner : public run::FieldlessClient {
   double advance() override;
   void observe(io::H5mdWriter& out, std::int64_t step, double time) override;
 
-  std::vector<char> liquid_species(const std::string& config_file) const;
+  /// Checks that every species is a liquid one (colloids are not built yet).
+  void check_liquid_species(const std::string& config_file) const;
   /// A fresh run's start: the velocities (the input's, or Maxwell–Boltzmann) and the first forces.
   void start();
   void start_velocities();
@@ -63,7 +63,7 @@ class DpdRunner : public run::FieldlessClient {
 
   State& state_;
   DpdProtocol protocol_;
-  std::unique_ptr<PairForceField<DpdPairs>> pairs_;
+  std::unique_ptr<DpdForceField> pairs_;
   std::unique_ptr<RigidBodyNve> integrator_;
   run::ProductionRunner production_;
   DpdRowSums row_;
