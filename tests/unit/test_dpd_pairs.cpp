@@ -61,8 +61,7 @@ Reference reference(const State& s, std::uint64_t step) {
       ++out.pairs;
       const Vec3 e = rij / r;
       const double w = 1.0 - r;
-      const double theta = noise.normal(step, static_cast<std::uint64_t>(std::min(p.id[i], p.id[j])),
-                                        static_cast<std::uint64_t>(std::max(p.id[i], p.id[j])), 0);
+      const double theta = noise.pair_normal(step, static_cast<std::uint64_t>(p.id[i]), static_cast<std::uint64_t>(p.id[j]));
       const std::array<Vec3, 3> f{kA * w * e, -kGamma * w * w * e.dot(p.velocity(i) - p.velocity(j)) * e,
                                   std::sqrt(2.0 * kGamma / kDt) * w * theta * e};
       for (int k = 0; k < 3; ++k) {

@@ -142,3 +142,46 @@ TEST(KeyedRandom, UniformsAreUniform) {
   EXPECT_GE(*std::min_element(u.begin(), u.end()), 0.0);
   EXPECT_LT(*std::max_element(u.begin(), u.end()), 1.0);
 }
+
+namespace {
+/// Relative error of x = Φ⁻¹(p), from the error of the smaller tail probability it gives (Φ(x)
+/// against p below ½, erfc(x/√2)/2 against 1 − p, exact in floating point, above) divided by the
+/// density: δx = δp/φ(x); relative to |x| away from the centre, absolute near it.
+double tail_error(double p) {
+  const double x = KeyedRandom::normal_quantile(p);
+  const double dp = p <= 0.5 ? 0.5 * std::erfc(-x / std::sqrt(2.0)) - p : 0.5 * std::erfc(x / std::sqrt(2.0)) - (1.0 - p);
+  const double density = std::exp(-0.5 * x * x) / std::sqrt(2.0 * M_PI);
+  return std::abs(dp) / density / std::max(std::abs(x), 1e-3);
+}
+}  // namespace
+
+TEST(KeyedRandom, NormalQuantileInvertsTheNormalCdf) {
+  // Φ(Φ⁻¹(p)) = p, with Φ from std::erfc (independent of the rational approximation), across the
+  // central region, both tails and the switch points 0.02425 and 0.97575; erfc's own error (a few
+  // ulp) is far below the bound except in the outer tail, where φ is tiny.
+  double worst = 0.0;
+  for (double p : {1e-15, 1e-9, 1e-5, 1e-3, 0.01, 0.02425, 0.0243, 0.1, 0.3, 0.5, 0.7, 0.9, 0.97575, 0.9758, 0.999, 1 - 1e-9}) {
+    worst = std::max(worst, tail_error(p));
+  }
+  for (int k = 1; k < 10000; ++k) worst = std::max(worst, tail_error(k / 10000.0));
+  std::printf("largest relative error of the quantile (Acklam: 1.15e-9): %.2e\n", worst);
+  EXPECT_LT(worst, 2e-9);
+  EXPECT_EQ(KeyedRandom::normal_quantile(0.5), 0.0);
+  EXPECT_NEAR(KeyedRandom::normal_quantile(0.975), 1.959963984540054, 1e-8);  // the two-sided 95% point
+}
+
+TEST(KeyedRandom, PairNormalsHaveTheMomentsAndDistributionOfAStandardNormal) {
+  const KeyedRandom r(2024, 11);
+  std::vector<double> x, next;
+  for (std::uint64_t k = 0; k < 400000; ++k) {
+    x.push_back(r.pair_normal(3, k % 1000, 1000 + k / 1000));
+    next.push_back(r.pair_normal(4, k % 1000, 1000 + k / 1000));
+  }
+  const double n = static_cast<double>(x.size());
+  const Moments m = moments(x);
+  EXPECT_LT(std::abs(m.mean), 4.0 / std::sqrt(n));
+  EXPECT_LT(std::abs(m.var - 1.0), 4.0 * std::sqrt(2.0 / n));
+  EXPECT_LT(std::abs(m.m4 - 3.0), 4.0 * std::sqrt(96.0 / n));
+  EXPECT_LT(std::sqrt(n) * ks_statistic(x, [](double v) { return 0.5 * std::erfc(-v / std::sqrt(2.0)); }), 1.95);
+  EXPECT_LT(std::abs(correlation(x, next)), 4.0 / std::sqrt(n));  // a new draw each step
+}

@@ -63,7 +63,6 @@ void SpeciesGrid::clear() {
   sy_.assign(cells * capacity_, 0.0);
   sz_.assign(cells * capacity_, 0.0);
   sid_.assign(cells * capacity_, -1);
-  r2_scratch_.assign(capacity_, 0.0);
 }
 
 int SpeciesGrid::cell_of(const Vec3& r) const {
@@ -126,7 +125,6 @@ void SpeciesGrid::grow_capacity() {
     }
   }
   sx_.swap(nx); sy_.swap(ny); sz_.swap(nz); sid_.swap(nid);
-  r2_scratch_.assign(capacity_, 0.0);
 }
 
 void CellList::build(const Box& box, const std::vector<double>& x, const std::vector<double>& y,

@@ -70,7 +70,6 @@ class SpeciesGrid {
   std::vector<double> sx_, sy_, sz_;             // slot positions, cell-major
   std::vector<std::int32_t> sid_;                // slot particle index
   std::vector<std::int32_t> cell_, slot_;        // per particle (indexed by particle index)
-  mutable std::vector<double> r2_scratch_;
 };
 
 /// All species' grids plus the particle → species map.
@@ -148,35 +147,41 @@ template <class F>
 [[gnu::always_inline]] inline bool SpeciesGrid::scan_cell(int cell, const Vec3& q, double rc2, const Box* min_image_box, F& f) const {
   const int m = count_[cell];
   if (m == 0) return false;
-  double* r2 = r2_scratch_.data();
   const std::size_t base = static_cast<std::size_t>(cell) * capacity_;
-  const double* px = sx_.data() + base;
-  const double* py = sy_.data() + base;
-  const double* pz = sz_.data() + base;
-  // Distance pass without branches so it vectorises; hits are handled afterwards.
-  if (min_image_box == nullptr) {
+  // The distances of a chunk of slots go to a buffer on the stack, so that visits from several
+  // threads (a Verlet list built in parallel) share nothing.
+  constexpr int kChunk = 32;
+  double r2[kChunk];
+  for (int s0 = 0; s0 < m; s0 += kChunk) {
+    const int mm = std::min(kChunk, m - s0);
+    const double* px = sx_.data() + base + static_cast<std::size_t>(s0);
+    const double* py = sy_.data() + base + static_cast<std::size_t>(s0);
+    const double* pz = sz_.data() + base + static_cast<std::size_t>(s0);
+    // Distance pass without branches so it vectorises; hits are handled afterwards.
+    if (min_image_box == nullptr) {
 #pragma omp simd
-    for (int s = 0; s < m; ++s) {
-      const double dx = px[s] - q.x(), dy = py[s] - q.y(), dz = pz[s] - q.z();
-      r2[s] = dx * dx + dy * dy + dz * dz;
-    }
-  } else {
-    const Vec3& L = min_image_box->edges();
-    const Vec3& invL = min_image_box->inverse_edges();
+      for (int s = 0; s < mm; ++s) {
+        const double dx = px[s] - q.x(), dy = py[s] - q.y(), dz = pz[s] - q.z();
+        r2[s] = dx * dx + dy * dy + dz * dz;
+      }
+    } else {
+      const Vec3& L = min_image_box->edges();
+      const Vec3& invL = min_image_box->inverse_edges();
 #pragma omp simd
-    for (int s = 0; s < m; ++s) {
-      double dx = px[s] - q.x(), dy = py[s] - q.y(), dz = pz[s] - q.z();
-      dx -= L.x() * std::nearbyint(dx * invL.x());
-      dy -= L.y() * std::nearbyint(dy * invL.y());
-      dz -= L.z() * std::nearbyint(dz * invL.z());
-      r2[s] = dx * dx + dy * dy + dz * dz;
+      for (int s = 0; s < mm; ++s) {
+        double dx = px[s] - q.x(), dy = py[s] - q.y(), dz = pz[s] - q.z();
+        dx -= L.x() * std::nearbyint(dx * invL.x());
+        dy -= L.y() * std::nearbyint(dy * invL.y());
+        dz -= L.z() * std::nearbyint(dz * invL.z());
+        r2[s] = dx * dx + dy * dy + dz * dz;
+      }
     }
-  }
-  for (int s = 0; s < m; ++s) {
-    if (r2[s] > rc2) continue;
-    Vec3 d(px[s] - q.x(), py[s] - q.y(), pz[s] - q.z());
-    if (min_image_box != nullptr) d = min_image_box->min_image(d);
-    if (f(sid_[base + s], d, r2[s])) return true;
+    for (int s = 0; s < mm; ++s) {
+      if (r2[s] > rc2) continue;
+      Vec3 d(px[s] - q.x(), py[s] - q.y(), pz[s] - q.z());
+      if (min_image_box != nullptr) d = min_image_box->min_image(d);
+      if (f(sid_[base + static_cast<std::size_t>(s0 + s)], d, r2[s])) return true;
+    }
   }
   return false;
 }
