@@ -9,6 +9,7 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <cstdlib>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -43,7 +44,8 @@ void BM_DpdLiquid(benchmark::State& bs) {
   omp_set_num_threads(static_cast<int>(bs.range(1)));
 #endif
   State s = liquid(n);
-  DpdForceField field({25.0, 4.5, 1.0, 1.0}, 0.005, 11, 1, 0.3);
+  const char* skin = std::getenv("ANISODYN_BENCH_DPD_SKIN");  // default 0.3, anisodyn-dpd's and LAMMPS's
+  DpdForceField field({25.0, 4.5, 1.0, 1.0}, 0.005, 11, 1, skin ? std::atof(skin) : 0.3);
   RigidBodyNve nve(0.005, {{1.0, Vec3::Zero()}}, [&field](const State& st, BodyForces& out) { field(st, out); });
   double kinetic = 0.0;
   auto step = [&] {
