@@ -8,7 +8,7 @@ spec 30 §2 (rho = 3, a = 25, gamma = 4.5, dt = 0.005), 1536 particles in a box 
    printed (the conservative part checked against an independent numpy sum on the last frame);
 2. on a run of 1200 steps: two threads give the same bits as one; SIGINT (exit 130) then resumed,
    and SIGKILL after a periodic checkpoint then resumed: both bit for bit the uninterrupted output,
-   with the same summary;
+   with the same summary; `--replica 1` gives other starting velocities and another trajectory;
 3. bad input exits 2, names the file and the JSON path, and writes nothing.
 """
 import json
@@ -110,6 +110,13 @@ print("two threads: the same bits as one")
 summaries = check_resumes(lambda out: dpd_cmd(out, "short.json"), "dpd", "straight.h5", duration, run)
 for s in summaries:
     assert json.loads(s) == summary, "a resumed run's summary differs from the uninterrupted run's"
+
+r = run(dpd_cmd("replica1.h5", "short.json", extra=("--replica", "1")))
+assert r.returncode == 0, r.stderr
+with h5py.File("straight.h5") as a, h5py.File("replica1.h5") as b:
+    assert not np.array_equal(a["particles/all/position/value"][-1], b["particles/all/position/value"][-1])
+    assert not np.array_equal(a["particles/all/velocity/value"][0], b["particles/all/velocity/value"][0])
+print("--replica 1: other starting velocities and another trajectory")
 
 bad = [
     ("negative gamma", {**dpd, "liquid": {"gamma": -1}}, "liquid.gamma"),
