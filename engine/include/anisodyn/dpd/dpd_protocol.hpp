@@ -11,14 +11,12 @@
 #include <vector>
 
 #include "anisodyn/interactions/dpd_pairs.hpp"
-#include "anisodyn/io/diffusion_overrides.hpp"
 #include "anisodyn/run/time_step_run.hpp"
 #include "anisodyn/tool/json_config.hpp"
 
 namespace anisodyn {
 
 struct DpdProtocol : run::TimeStepRun {
-  io::DiffusionOverrides diffusion;  // unused by DPD; run_production_engine reads its origins
   DpdParameters liquid;
   std::vector<std::string> liquid_species;  // empty: every species of the input
   double skin = 0.3;

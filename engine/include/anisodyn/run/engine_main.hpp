@@ -6,7 +6,7 @@
 // (an input error without a file of its own concerns the input state); write the header with the
 // provenance; run to completion with checkpoints; print the summary as JSON on stdout.
 //
-// The protocol has `seed`, `replica` and `diffusion` (io::DiffusionOverrides); the runner is
+// The protocol has `seed`, `replica` and, if the engine takes D tensors, `diffusion` (io::DiffusionOverrides); the runner is
 // constructed as Runner(state, protocol, config name, quiet) and has run, restore,
 // checkpoint_state, last_output_step and summary.
 #include <cstdio>
@@ -52,7 +52,8 @@ void run_production_engine(tool::CommonOptions& opt, const tool::ToolInfo& info,
     throw InputError(input, "/particles/all", e.what());
   }
   nlohmann::json provenance = tool::make_provenance(info.name, opt.argv, opt.inputs);
-  if (!protocol.diffusion.origins.empty()) provenance["diffusion_sources"] = protocol.diffusion.origins;
+  if constexpr (requires { protocol.diffusion; })  // engines that take D tensors (DPD does not)
+    if (!protocol.diffusion.origins.empty()) provenance["diffusion_sources"] = protocol.diffusion.origins;
   if (add_provenance) add_provenance(protocol, provenance);
   const io::H5mdHeader header{"anisodyn", "", "anisodyn user", parameters, provenance, state.species};
   if (files.resuming()) {
