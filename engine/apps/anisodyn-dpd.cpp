@@ -23,6 +23,9 @@ tool::Description description() {
                      "input | maxwell_boltzmann: where the starting velocities come from (default: the input's if it has them)"),
       tool::optional("frames", "object", nullptr, "frame rules: every_steps, every_time, log_first_time + log_per_decade, log_steps"),
       tool::optional("observe_every", "integer", 100, "steps between observation rows (each the mean over its steps)"),
+      tool::optional("green_kubo", "object", nullptr,
+                     "{blocks (10), max_lag (20)}: the off-diagonal pressure tensor (total and each part) sampled every step into a "
+                     "multiple-tau autocorrelator, one row of stress_acf per block, for anisodyn-viscosity (absent: not recorded)"),
   };
   // Work of a job = particles x steps; rate: 24000 liquid particles, one core, bench/dpd_throughput.cpp.
   d.cost = {{"kind", "model"},

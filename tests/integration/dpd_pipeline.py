@@ -7,8 +7,8 @@ spec 30 §2 (rho = 3, a = 25, gamma = 4.5, dt = 0.005), 1536 particles in a box 
    1% is resolved); the total momentum conserved to round-off; the pressure and its four parts
    printed (the conservative part checked against an independent numpy sum on the last frame);
 2. on a run of 1200 steps: two threads give the same bits as one; SIGINT (exit 130) then resumed,
-   and SIGKILL after a periodic checkpoint then resumed: both bit for bit the uninterrupted output,
-   with the same summary; `--replica 1` gives other starting velocities and another trajectory;
+   and SIGKILL after a periodic checkpoint then resumed: both bit for bit the uninterrupted output
+   (the Green-Kubo record's rows included), with the same summary; `--replica 1` gives other starting velocities and another trajectory;
 3. bad input exits 2, names the file and the JSON path, and writes nothing.
 """
 import json
@@ -46,7 +46,9 @@ assert r.returncode == 0, r.stderr
 write("dpd.json", dpd)
 
 
-write("short.json", {**dpd, "steps": 1200, "frames": {"every_steps": 400}})
+# The short run also records the Green-Kubo stress autocorrelation, so that its rows are checked
+# across threads and restarts too.
+write("short.json", {**dpd, "steps": 1200, "frames": {"every_steps": 400}, "green_kubo": {"blocks": 4, "max_lag": 1.0}})
 
 
 def dpd_cmd(out, config="dpd.json", extra=()):

@@ -18,6 +18,7 @@ DpdProtocol parse_dpd_protocol(tool::ConfigNode& cfg) {
   if (cfg.has("velocities"))
     p.velocities = cfg.choice("velocities", {"input", "maxwell_boltzmann"}) == "input" ? DpdProtocol::Velocities::Input
                                                                                       : DpdProtocol::Velocities::MaxwellBoltzmann;
+  p.green_kubo = run::parse_green_kubo(cfg);
   return p;
 }
 

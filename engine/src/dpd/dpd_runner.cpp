@@ -109,6 +109,11 @@ DpdRunner::DpdRunner(State& state, const DpdProtocol& protocol, const std::strin
   for (const Species& sp : state_.species) inertia.push_back({sp.mass, Vec3::Zero()});  // point particles
   integrator_ = std::make_unique<RigidBodyNve>(protocol_.time_step, inertia, [this](const State& s, BodyForces& out) { (*pairs_)(s, out); });
 
+  if (protocol_.green_kubo)
+    green_kubo_ = std::make_unique<run::GreenKuboRecorder>(*protocol_.green_kubo, protocol_.time_step, run::run_steps(protocol_),
+                                                           std::vector<std::string>{"kinetic", "conservative", "dissipative", "random"},
+                                                           state_.box.volume(), protocol_.liquid.kT, config_file);
+
   const DpdParameters& d = protocol_.liquid;
   summary_["liquid"] = {{"a", d.a}, {"gamma", d.gamma}, {"kT", d.kT}, {"cutoff", d.cutoff}, {"skin", protocol_.skin},
                         {"noise_amplitude", std::sqrt(2.0 * d.gamma * d.kT)}};
@@ -137,6 +142,10 @@ void DpdRunner::add_to_row() {
   row_.kinetic_temperature += kinetic.trace() / (3.0 * (n - 1.0));
   row_.potential_energy += sums.energy / n;
   for (std::size_t k = 0; k < 3; ++k) row_.virial[k] += sums.virial[k];
+  if (!green_kubo_) return;
+  const double volume = state_.box.volume();
+  green_kubo_->add(production_.step() + 1,
+                   {kinetic / volume, sums.virial[0] / volume, sums.virial[1] / volume, sums.virial[2] / volume}, *out_);
 }
 
 void DpdRunner::observe(io::H5mdWriter& out, std::int64_t step, double t) {
@@ -188,7 +197,10 @@ void DpdRunner::start() {
 void DpdRunner::run(io::H5mdWriter& out, std::int64_t checkpoint_every, const std::function<void()>& checkpoint) {
   if (!restored_) start();
   run::CheckpointClock checkpoints(checkpoint_every, checkpoint);
+  out_ = &out;
   production_.run(out, checkpoints, 0);
+  if (green_kubo_) green_kubo_->finish(production_.step(), out);
+  out_ = nullptr;
   summary_["steps"] = production_.step();
   summary_["time"] = production_.time();
   summary_["time_step"] = protocol_.time_step;
@@ -202,7 +214,8 @@ nlohmann::json DpdRunner::checkpoint_state() const {
   return {{"production", production_.checkpoint_state()},
           {"row", row_.to_json()},
           {"forces", {{"force", force}, {"energy", f.energy}, {"virial", mat_json(f.virial)}}},
-          {"summary", summary_}};
+          {"summary", summary_},
+          {"green_kubo", green_kubo_ ? green_kubo_->to_json() : nlohmann::json()}};
 }
 
 void DpdRunner::restore(const nlohmann::json& j) {
@@ -218,6 +231,7 @@ void DpdRunner::restore(const nlohmann::json& j) {
   forces.virial = mat_from(f.at("virial"));
   integrator_->restore_forces(std::move(forces));
   summary_ = j.at("summary");
+  if (green_kubo_) green_kubo_->restore(j.at("green_kubo"));
 }
 
 }  // namespace anisodyn

@@ -1,5 +1,7 @@
 #include "anisodyn/run/time_step_run.hpp"
 
+#include <cmath>
+
 #include "anisodyn/run/step_unit.hpp"
 
 namespace anisodyn::run {
@@ -19,6 +21,15 @@ TimeStepRun parse_time_step_run(tool::ConfigNode& cfg, const std::string& engine
 
 ProductionSettings production_settings(const TimeStepRun& run, const std::string& label) {
   return {run.segments, run.frames, run.observe_every, StepUnit::steps(), label};
+}
+
+std::int64_t run_steps(const TimeStepRun& run) {
+  double end = 0.0;  // in steps
+  for (const FieldSegment& s : run.segments) {
+    const double length = s.unit == FieldSegment::Unit::Steps ? s.length : s.length / run.time_step;
+    end = s.absolute ? length : end + length;
+  }
+  return static_cast<std::int64_t>(std::ceil(end - 1e-9));
 }
 
 }  // namespace anisodyn::run

@@ -10,7 +10,8 @@
 // Observables, each the mean over the steps of its row (docs/dpd.md): the kinetic temperature
 // Σ m v²/(3(N − 1)) of the full-step velocities, the pressure tensor split into its kinetic,
 // conservative, dissipative and random parts (each xx, yy, zz, xy, xz, yz), the pressure, the
-// potential energy per particle; and the total momentum at the row's last step.
+// potential energy per particle; and the total momentum at the row's last step. With `green_kubo`,
+// the four parts of every step's pressure tensor also go to the Green–Kubo record (run/green_kubo.hpp).
 #include <array>
 #include <functional>
 #include <memory>
@@ -59,6 +60,7 @@ class DpdRunner : public run::FieldlessClient {
   /// A fresh run's start: the velocities (the input's, or Maxwell–Boltzmann) and the first forces.
   void start();
   void start_velocities();
+  /// Adds the step's sums to the row (and to the Green–Kubo record).
   void add_to_row();
 
   State& state_;
@@ -66,6 +68,8 @@ class DpdRunner : public run::FieldlessClient {
   std::unique_ptr<DpdForceField> pairs_;
   std::unique_ptr<RigidBodyNve> integrator_;
   run::ProductionRunner production_;
+  std::unique_ptr<run::GreenKuboRecorder> green_kubo_;
+  io::H5mdWriter* out_ = nullptr;  // during run(): where the Green–Kubo rows go
   DpdRowSums row_;
   bool attributes_written_ = false;
   bool restored_ = false;

@@ -1,0 +1,1 @@
+anisodyn_add_script_test(dpd_green_kubo dpd_green_kubo.py)
