@@ -265,8 +265,8 @@ THEORY_KINDS = {"constant", "linear", "power", "exponential", "free_diffusion", 
 SCALAR_BLOCK_KEYS = {"stage", "names", "caption"}
 PLOT_KEYS = {"name", "stage", "select", "log", "xlabel", "ylabel", "title", "caption", "theory"}
 TABLE_PLOT_KEYS = PLOT_KEYS | {"table", "x", "y", "errors"}
-SCALAR_PLOT_KEYS = PLOT_KEYS | {"scalar", "x", "x_scale", "series"}
-SERIES_PLOT_KEYS = (PLOT_KEYS - {"stage"}) | {"x", "x_scale", "series"}  # "series": a list of entries, each its own stage
+SCALAR_PLOT_KEYS = PLOT_KEYS | {"scalar", "x", "x_scale", "x_power", "series"}
+SERIES_PLOT_KEYS = (PLOT_KEYS - {"stage"}) | {"x", "x_scale", "x_power", "series"}  # "series": a list of entries, each its own stage
 SERIES_ENTRY_KEYS = {"stage", "scalar", "label", "select", "band"}
 THEORY_KEYS = {"constant": {"value"}, "linear": {"intercept", "slope"}, "power": {"prefactor", "exponent"},
                "exponential": {"tau", "amplitude"}, "free_diffusion": {"species", "component"}, "wertheim": {"scalar"}}
@@ -359,13 +359,17 @@ def validate_report(m):
                     if (axis == "x" or axis in item) and (not isinstance(value, str) or value not in grid):
                         raise ManifestError(f"{p}.{axis}", "a grid variable (" + (", ".join(grid) or "the manifest has none") + ")",
                                             value)
-                if "x_scale" in item:
-                    scale = item["x_scale"]
-                    if not is_number(scale) or scale == 0 or not math.isfinite(scale):
-                        raise ManifestError(f"{p}.x_scale", "a non-zero number (the x coordinate is the grid value times it)", scale)
+                for key, meaning in (("x_scale", "the grid value times it"), ("x_power", "(the grid value times x_scale) to this power")):
+                    if key not in item:
+                        continue
+                    value = item[key]
+                    if not is_number(value) or value == 0 or not math.isfinite(value):
+                        raise ManifestError(f"{p}.{key}", f"a non-zero number (the x coordinate is {meaning})", value)
                     if not all(is_number(v) for v in grid[item["x"]]):
-                        raise ManifestError(f"{p}.x_scale", f"no 'x_scale': it has no effect, the values of grid.{item['x']} are not "
-                                                            "all numbers (they are drawn at their positions in the list)")
+                        raise ManifestError(f"{p}.{key}", f"no '{key}': it has no effect, the values of grid.{item['x']} are not "
+                                                          "all numbers (they are drawn at their positions in the list)")
+                    if key == "x_power" and value < 0 and any(v == 0 for v in grid[item["x"]]):
+                        raise ManifestError(f"{p}.x_power", f"a positive power: grid.{item['x']} holds 0", value)
             if not isinstance(item.get("log", ""), str) or set(item.get("log", "")) - set("xy"):
                 raise ManifestError(f"{p}.log", "'x', 'y', 'xy' or ''", item.get("log"))
             for j, t in enumerate(item.get("theory", [])):

@@ -296,11 +296,12 @@ class Report:
                 self.theory(ax, t, job, xs, where)
 
     def scalar_plot(self, ax, spec, where):
-        """Scalars ± SE against the grid variable `x` (times `x_scale`): one stage's scalar, one series per
+        """Scalars ± SE against the grid variable `x` (times `x_scale`, to the power `x_power`): one stage's scalar, one series per
         value of the grid variable `series`; or, with `series` a list, one series per entry, each with its
         own stage, scalar and select (an entry whose stage does not depend on `x` is a horizontal line)."""
         import numpy as np
-        x, scale = spec.get("x"), spec.get("x_scale", 1.0)
+        x, scale, power = spec.get("x"), spec.get("x_scale", 1.0), spec.get("x_power", 1.0)
+        scale = (lambda v: (v * scale) ** power) if power != 1.0 else (lambda v: v * scale)  # grid value → x coordinate
         grid = self.m.get("grid", {})
         if x not in grid:
             raise ReportError(f"{where}.x: expected a grid variable ({', '.join(grid) or 'none'})")
@@ -334,7 +335,7 @@ class Report:
             if item["scalar"] not in scalars:
                 raise ReportError(f"{where}.scalar: stage '{item['stage']}' has no scalar '{item['scalar']}' ({', '.join(scalars)})")
             v, e = scalars[item["scalar"]][:2]
-            out.append((self.axis_value(x, job.point[x]) * scale if x in job.point else None, v, e, job))
+            out.append((scale(self.axis_value(x, job.point[x])) if x in job.point else None, v, e, job))
         if out and out[0][0] is None and not constant_allowed:
             raise ReportError(f"{where}.x: stage '{item['stage']}' does not depend on the grid variable '{x}'")
         return out
