@@ -45,7 +45,7 @@ void BM_DpdLiquid(benchmark::State& bs) {
 #endif
   State s = liquid(n);
   const char* skin = std::getenv("ANISODYN_BENCH_DPD_SKIN");  // default 0.3, anisodyn-dpd's and LAMMPS's
-  DpdForceField field({25.0, 4.5, 1.0, 1.0}, 0.005, 11, 1, skin ? std::atof(skin) : 0.3);
+  DpdForceField field({25.0, 4.5, 1.0, 1.0}, 0.005, 11, skin ? std::atof(skin) : 0.3);
   RigidBodyNve nve(0.005, {{1.0, Vec3::Zero()}}, [&field](const State& st, BodyForces& out) { field(st, out); });
   double kinetic = 0.0;
   auto step = [&] {

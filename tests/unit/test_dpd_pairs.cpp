@@ -35,7 +35,7 @@ State liquid(std::size_t n, double edge, std::uint64_t seed) {
 }
 
 DpdForceField field(std::uint64_t step, double gamma = kGamma) {
-  DpdForceField f({kA, gamma, 1.0, 1.0}, kDt, kSeed, 1, 0.3);
+  DpdForceField f({kA, gamma, 1.0, 1.0}, kDt, kSeed, 0.3);
   f.set_noise_step(step);
   return f;
 }

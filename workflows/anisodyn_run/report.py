@@ -300,8 +300,8 @@ class Report:
         value of the grid variable `series`; or, with `series` a list, one series per entry, each with its
         own stage, scalar and select (an entry whose stage does not depend on `x` is a horizontal line)."""
         import numpy as np
-        x, scale, power = spec.get("x"), spec.get("x_scale", 1.0), spec.get("x_power", 1.0)
-        scale = (lambda v: (v * scale) ** power) if power != 1.0 else (lambda v: v * scale)  # grid value → x coordinate
+        x, factor, power = spec.get("x"), spec.get("x_scale", 1.0), spec.get("x_power", 1.0)
+        scale = (lambda v: (v * factor) ** power) if power != 1.0 else (lambda v: v * factor)  # grid value → x coordinate
         grid = self.m.get("grid", {})
         if x not in grid:
             raise ReportError(f"{where}.x: expected a grid variable ({', '.join(grid) or 'none'})")

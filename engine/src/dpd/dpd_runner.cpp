@@ -104,7 +104,7 @@ DpdRunner::DpdRunner(State& state, const DpdProtocol& protocol, const std::strin
     throw InputError(config_file, "velocities", "\"input\", but the input state has no velocities: use \"maxwell_boltzmann\"");
 
   const std::uint64_t seed = replica_seed(protocol_.seed, protocol_.replica);
-  pairs_ = std::make_unique<DpdForceField>(protocol_.liquid, protocol_.time_step, seed, static_cast<int>(state_.species.size()), protocol_.skin);
+  pairs_ = std::make_unique<DpdForceField>(protocol_.liquid, protocol_.time_step, seed, protocol_.skin);
   std::vector<BodyInertia> inertia;
   for (const Species& sp : state_.species) inertia.push_back({sp.mass, Vec3::Zero()});  // point particles
   integrator_ = std::make_unique<RigidBodyNve>(protocol_.time_step, inertia, [this](const State& s, BodyForces& out) { (*pairs_)(s, out); });
@@ -214,6 +214,8 @@ nlohmann::json DpdRunner::checkpoint_state() const {
   return {{"production", production_.checkpoint_state()},
           {"row", row_.to_json()},
           {"forces", {{"force", force}, {"energy", f.energy}, {"virial", mat_json(f.virial)}}},
+          // The pair list's order decides the order of the force sums: rebuilt from these, it is the same.
+          {"list_positions", pairs_->list_positions()},
           {"summary", summary_},
           {"green_kubo", green_kubo_ ? green_kubo_->to_json() : nlohmann::json()}};
 }
@@ -230,6 +232,7 @@ void DpdRunner::restore(const nlohmann::json& j) {
   forces.energy = f.at("energy").get<double>();
   forces.virial = mat_from(f.at("virial"));
   integrator_->restore_forces(std::move(forces));
+  pairs_->restore_list(state_.box, j.at("list_positions").get<std::vector<double>>());
   summary_ = j.at("summary");
   if (green_kubo_) green_kubo_->restore(j.at("green_kubo"));
 }

@@ -14,13 +14,17 @@
 // Why a kernel of its own rather than a pair evaluator of interactions/pair_forces.hpp: the liquid
 // is nearly all of a DPD run's work (spec 30's boxes hold 10²–10⁴ liquid particles per colloid),
 // and the generic loop's per-pair records (three force vectors, torques, energy) and per-part
-// virial tensors cost four times LAMMPS's whole step (docs/performance.md). Here every pair is
-// evaluated once, from the lower index, and leaves one force vector in its slot of the Verlet
-// list; then each particle sums its slots in the order of its full list, with the sign of its
-// side. The same terms are added in the same order for any thread count, and both particles get
+// virial tensors cost four times LAMMPS's whole step (docs/performance.md). Here the particles are
+// taken in the cell order of the pair list (neighbors/cell_ordered_pairs.hpp), copied into arrays
+// of that order each step, so that partners are near each other in memory. Every pair is
+// evaluated once, from its lower position, which adds the force to its own sum and leaves it in
+// the pair's slot; then each position subtracts the slots of its pairs from below, in ascending
+// order. The same terms are added in the same order for any thread count, and both particles get
 // exactly opposite forces, so Newton's third law holds pair by pair. The virial (by part, its six
 // independent elements: r_ij ⊗ F_ij is symmetric for central forces) and the energy are summed per
-// particle over its pairs above and reduced in index order.
+// position over its pairs above and reduced in position order. The order is a function of the
+// positions at the list's last build, which a checkpoint keeps (list_positions), so a resumed run
+// adds in the same order.
 //
 // The velocities are those in the state when the forces are evaluated: in velocity Verlet the
 // half-step ones, which is LAMMPS's scheme and Groot–Warren's with λ = ½ (docs/dpd.md).
@@ -30,7 +34,7 @@
 
 #include "anisodyn/core/keyed_random.hpp"
 #include "anisodyn/integrate/body_forces.hpp"
-#include "anisodyn/neighbors/verlet_list.hpp"
+#include "anisodyn/neighbors/cell_ordered_pairs.hpp"
 #include "anisodyn/system/state.hpp"
 
 namespace anisodyn {
@@ -55,8 +59,8 @@ struct DpdSums {
 
 class DpdForceField {
  public:
-  /// Every particle is liquid (of one of `nspecies` species); seed keys the pair noise.
-  DpdForceField(DpdParameters params, double time_step, std::uint64_t seed, int nspecies, double skin);
+  /// Every particle is liquid; seed keys the pair noise.
+  DpdForceField(DpdParameters params, double time_step, std::uint64_t seed, double skin);
 
   /// Adds the DPD forces of state s into out (forces, energy, virial summed over the parts).
   void operator()(const State& s, BodyForces& out);
@@ -64,20 +68,30 @@ class DpdForceField {
   /// The draws of the next evaluation are those of this step (the engine sets it before each).
   void set_noise_step(std::uint64_t step) { noise_step_ = step; }
   const DpdSums& last_sums() const { return sums_; }
-  const VerletList& list() const { return list_; }
+  const CellOrderedPairs& list() const { return list_; }
+  /// The positions of the list's last build (for a checkpoint), and the list rebuilt from them.
+  std::vector<double> list_positions() const { return list_.built_positions(); }
+  void restore_list(const Box& box, const std::vector<double>& positions) { list_.rebuild_at(box, positions); }
   const DpdParameters& parameters() const { return p_; }
 
  private:
-  /// Per-particle sums over the particle's pairs above it: energy, then 3 parts × 6 virial elements.
+  /// Copies the particles into the arrays of the list's order.
+  void gather(const Particles& p);
+
+  /// Per-position sums over the position's pairs above it: energy, then 3 parts × 6 virial elements.
   static constexpr int kPerParticle = 19;
 
   DpdParameters p_;
   double noise_amplitude_;  // √(2γkT/Δt)
   KeyedRandom noise_;
-  VerletList list_;
+  CellOrderedPairs list_;
   std::uint64_t noise_step_ = 0;
-  std::vector<double> slot_force_;  // 3 per listed pair: the force on the lower index
-  std::vector<double> partial_;     // kPerParticle per particle
+  // Per position of the list's order: positions, velocities, ids.
+  std::vector<double> x_, y_, z_, vx_, vy_, vz_;
+  std::vector<std::uint64_t> id_;
+  std::vector<double> slot_force_;  // 3 per listed pair: the force on the lower position
+  std::vector<double> row_force_;   // 3 per position: the sum over its pairs above
+  std::vector<double> partial_;     // kPerParticle per position
   DpdSums sums_;
 };
 

@@ -1,0 +1,186 @@
+#include "anisodyn/neighbors/cell_ordered_pairs.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace anisodyn {
+
+namespace {
+
+/// r wrapped into [0, L) (positions may be unwrapped or a rounding off the edge).
+double wrapped(double r, double L, double inv_L) {
+  double w = r - L * std::floor(r * inv_L);
+  if (w >= L) w -= L;
+  if (w < 0.0) w = 0.0;
+  return w;
+}
+
+}  // namespace
+
+CellOrderedPairs::CellOrderedPairs(double cutoff, double skin) : cutoff_(cutoff), skin_(skin) {
+  if (!(cutoff > 0.0) || !(skin > 0.0)) throw std::invalid_argument("CellOrderedPairs: expected a positive cut-off and skin");
+}
+
+bool CellOrderedPairs::update(const Box& box, const double* x, const double* y, const double* z, std::size_t n) {
+  bool stale = built_x_.size() != n || box.edges() != box_.edges();
+  const double limit2 = 0.25 * skin_ * skin_;
+  for (std::size_t i = 0; !stale && i < n; ++i) {
+    const Vec3 d = box.min_image(Vec3(x[i] - built_x_[i], y[i] - built_y_[i], z[i] - built_z_[i]));
+    stale = d.squaredNorm() > limit2;
+  }
+  if (stale) build(box, x, y, z, n);
+  return stale;
+}
+
+void CellOrderedPairs::rebuild_at(const Box& box, const std::vector<double>& positions) {
+  const std::size_t n = positions.size() / 3;
+  std::vector<double> x(n), y(n), z(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    x[i] = positions[3 * i];
+    y[i] = positions[3 * i + 1];
+    z[i] = positions[3 * i + 2];
+  }
+  build(box, x.data(), y.data(), z.data(), n);
+}
+
+std::vector<double> CellOrderedPairs::built_positions() const {
+  std::vector<double> out;
+  out.reserve(3 * built_x_.size());
+  for (std::size_t i = 0; i < built_x_.size(); ++i) out.insert(out.end(), {built_x_[i], built_y_[i], built_z_[i]});
+  return out;
+}
+
+void CellOrderedPairs::build(const Box& box, const double* x, const double* y, const double* z, std::size_t n) {
+  if (!(box.shortest_edge() >= 2.0 * (cutoff_ + skin_)))
+    throw std::invalid_argument("CellOrderedPairs: the box must be at least twice the cut-off plus the skin along every edge");
+  box_ = box;
+  built_x_.assign(x, x + n);
+  built_y_.assign(y, y + n);
+  built_z_.assign(z, z + n);
+  sort_into_cells(box, x, y, z, n);
+  find_pairs(box);
+  list_lower_pairs();
+  ++builds_;
+}
+
+void CellOrderedPairs::sort_into_cells(const Box& box, const double* x, const double* y, const double* z, std::size_t n) {
+  const Vec3 L = box.edges(), inv = box.inverse_edges();
+  const double reach = cutoff_ + skin_;
+  Int3 cells;
+  for (int a = 0; a < 3; ++a) cells[a] = std::max(1, static_cast<int>(std::floor(L[a] / reach)));
+  const int ncells = cells.prod();
+  if (cells != cells_) {
+    // Each cell's distinct neighbours (a box of 2 cells along an edge has the same cell at −1 and +1)
+    // above it, ascending: the cells the search of a particle of that cell visits besides its own.
+    cells_ = cells;
+    upper_cells_.assign(static_cast<std::size_t>(ncells), {});
+    for (int c = 0; c < ncells; ++c) {
+      const int cx = c % cells[0], cy = (c / cells[0]) % cells[1], cz = c / (cells[0] * cells[1]);
+      std::vector<std::int32_t>& up = upper_cells_[static_cast<std::size_t>(c)];
+      for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int nx = (cx + dx + cells[0]) % cells[0], ny = (cy + dy + cells[1]) % cells[1], nz = (cz + dz + cells[2]) % cells[2];
+            const int nc = nx + cells[0] * (ny + cells[1] * nz);
+            if (nc > c) up.push_back(nc);
+          }
+      std::sort(up.begin(), up.end());
+      up.erase(std::unique(up.begin(), up.end()), up.end());
+    }
+  }
+  std::vector<std::int32_t> cell(n);
+  std::vector<double> wx(n), wy(n), wz(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    wx[i] = wrapped(x[i], L.x(), inv.x());
+    wy[i] = wrapped(y[i], L.y(), inv.y());
+    wz[i] = wrapped(z[i], L.z(), inv.z());
+    const int cx = std::min(cells[0] - 1, static_cast<int>(wx[i] * cells[0] * inv.x()));
+    const int cy = std::min(cells[1] - 1, static_cast<int>(wy[i] * cells[1] * inv.y()));
+    const int cz = std::min(cells[2] - 1, static_cast<int>(wz[i] * cells[2] * inv.z()));
+    cell[i] = cx + cells[0] * (cy + cells[1] * cz);
+  }
+  // Counting sort, stable: within a cell, particles keep their index order.
+  cell_start_.assign(static_cast<std::size_t>(ncells) + 1, 0);
+  for (const std::int32_t c : cell) ++cell_start_[static_cast<std::size_t>(c) + 1];
+  for (int c = 0; c < ncells; ++c) cell_start_[static_cast<std::size_t>(c) + 1] += cell_start_[static_cast<std::size_t>(c)];
+  std::vector<std::int32_t> next(cell_start_.begin(), cell_start_.end() - 1);
+  order_.resize(n);
+  cell_of_.resize(n);
+  sx_.resize(n);
+  sy_.resize(n);
+  sz_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(next[static_cast<std::size_t>(cell[i])]++);
+    order_[k] = static_cast<std::int32_t>(i);
+    cell_of_[k] = cell[i];
+    sx_[k] = wx[i];
+    sy_[k] = wy[i];
+    sz_[k] = wz[i];
+  }
+}
+
+void CellOrderedPairs::find_pairs(const Box& box) {
+  const std::size_t n = order_.size();
+  const Vec3 L = box.edges(), inv = box.inverse_edges();
+  const double reach2 = (cutoff_ + skin_) * (cutoff_ + skin_);
+  // Each thread lists the rows of a contiguous block of positions into its own buffer; the blocks
+  // are joined in order, so the list is the same for any thread count.
+  int blocks = 1;
+#ifdef _OPENMP
+  blocks = omp_get_max_threads();
+#endif
+  std::vector<std::vector<std::int32_t>> found(static_cast<std::size_t>(blocks));
+  std::vector<std::size_t> row_end(n);
+#pragma omp parallel for schedule(static, 1) num_threads(blocks)
+  for (int b = 0; b < blocks; ++b) {
+    std::vector<std::int32_t>& mine = found[static_cast<std::size_t>(b)];
+    mine.reserve(n / static_cast<std::size_t>(blocks) * 16);
+    const std::size_t begin = n * static_cast<std::size_t>(b) / static_cast<std::size_t>(blocks);
+    const std::size_t end = n * (static_cast<std::size_t>(b) + 1) / static_cast<std::size_t>(blocks);
+    for (std::size_t k = begin; k < end; ++k) {
+      const double xk = sx_[k], yk = sy_[k], zk = sz_[k];
+      auto scan = [&](std::size_t from, std::size_t to) {
+        for (std::size_t j = from; j < to; ++j) {
+          double dx = sx_[j] - xk, dy = sy_[j] - yk, dz = sz_[j] - zk;
+          dx -= L.x() * std::nearbyint(dx * inv.x());
+          dy -= L.y() * std::nearbyint(dy * inv.y());
+          dz -= L.z() * std::nearbyint(dz * inv.z());
+          if (dx * dx + dy * dy + dz * dz < reach2) mine.push_back(static_cast<std::int32_t>(j));
+        }
+      };
+      const auto c = static_cast<std::size_t>(cell_of_[k]);
+      scan(k + 1, static_cast<std::size_t>(cell_start_[c + 1]));
+      for (const std::int32_t nc : upper_cells_[c])
+        scan(static_cast<std::size_t>(cell_start_[static_cast<std::size_t>(nc)]), static_cast<std::size_t>(cell_start_[static_cast<std::size_t>(nc) + 1]));
+      row_end[k] = mine.size();  // within the block, for now
+    }
+  }
+  first_pair_.assign(n + 1, 0);
+  partners_.clear();
+  for (int b = 0; b < blocks; ++b) {
+    const std::size_t offset = partners_.size();
+    const std::size_t begin = n * static_cast<std::size_t>(b) / static_cast<std::size_t>(blocks);
+    const std::size_t end = n * (static_cast<std::size_t>(b) + 1) / static_cast<std::size_t>(blocks);
+    for (std::size_t k = begin; k < end; ++k) first_pair_[k + 1] = row_end[k] + offset;
+    partners_.insert(partners_.end(), found[static_cast<std::size_t>(b)].begin(), found[static_cast<std::size_t>(b)].end());
+  }
+}
+
+void CellOrderedPairs::list_lower_pairs() {
+  const std::size_t n = order_.size();
+  lower_start_.assign(n + 1, 0);
+  for (const std::int32_t j : partners_) ++lower_start_[static_cast<std::size_t>(j) + 1];
+  for (std::size_t k = 0; k < n; ++k) lower_start_[k + 1] += lower_start_[k];
+  lower_.resize(partners_.size());
+  std::vector<std::size_t> next(lower_start_.begin(), lower_start_.end() - 1);
+  for (std::size_t k = 0; k < n; ++k)
+    for (std::size_t s = first_pair_[k]; s < first_pair_[k + 1]; ++s)
+      lower_[next[static_cast<std::size_t>(partners_[s])]++] = static_cast<std::int32_t>(s);
+}
+
+}  // namespace anisodyn
