@@ -9,6 +9,10 @@
 #include <omp.h>
 
 #include "anisodyn/core/keyed_random.hpp"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 #include "anisodyn/core/rng.hpp"
 #include "anisodyn/interactions/dpd_pairs.hpp"
 
@@ -162,4 +166,35 @@ TEST(DpdPairs, ForcesAreTheSameBitsForOneAndTwoThreads) {
   for (std::size_t i = 0; i < s.particles.size(); ++i) ASSERT_EQ(results[0].force[i], results[1].force[i]) << i;
   EXPECT_EQ(results[0].energy, results[1].energy);
   EXPECT_EQ(results[0].virial, results[1].virial);
+}
+
+TEST(DpdPairs, TheThreadCountDoesNotChangeABit) {
+  // Blocks of positions per thread, pairs across blocks through slots: the same sums in the same
+  // order for 1, 2 and 3 threads (on any machine: OpenMP runs 3 threads on 2 cores too).
+  const State s = liquid(1536, 8.0, 9);
+  std::vector<BodyForces> got;
+  std::vector<DpdSums> sums;
+  for (int threads : {1, 2, 3}) {
+#ifdef _OPENMP
+    omp_set_num_threads(threads);
+#endif
+    // A second evaluation with moved particles and the same list: nothing of the first may remain
+    // (pairs across blocks that left the cut-off once left stale slots behind).
+    auto f = field(5);
+    evaluate(f, s);
+    State moved = s;
+    for (std::size_t i = 0; i < moved.particles.size(); ++i) moved.particles.x[i] += 0.1 * std::sin(static_cast<double>(i));
+    got.push_back(evaluate(f, moved));
+    sums.push_back(f.last_sums());
+  }
+#ifdef _OPENMP
+  omp_set_num_threads(omp_get_num_procs());
+#endif
+  for (std::size_t t = 1; t < got.size(); ++t) {
+    for (std::size_t i = 0; i < s.particles.size(); ++i)
+      ASSERT_TRUE(got[t].force[i] == got[0].force[i]) << "particle " << i << ", " << t + 1 << " threads: " << got[t].force[i].transpose()
+                                                      << " against " << got[0].force[i].transpose();
+    EXPECT_EQ(sums[t].energy, sums[0].energy);
+    for (std::size_t k = 0; k < 3; ++k) EXPECT_TRUE(sums[t].virial[k] == sums[0].virial[k]);
+  }
 }

@@ -17,10 +17,12 @@
 // virial tensors cost four times LAMMPS's whole step (docs/performance.md). Here the particles are
 // taken in the cell order of the pair list (neighbors/cell_ordered_pairs.hpp), copied into arrays
 // of that order each step, so that partners are near each other in memory. Every pair is
-// evaluated once, from its lower position, which adds the force to its own sum and leaves it in
-// the pair's slot; then each position subtracts the slots of its pairs from below, in ascending
-// order. The same terms are added in the same order for any thread count, and both particles get
-// exactly opposite forces, so Newton's third law holds pair by pair. The virial (by part, its six
+// evaluated once, from its lower position, and its force added to both positions at once. Each
+// thread owns a contiguous block of positions; a pair that reaches into a later block is evaluated
+// first, by the same code, into its slot, and the owner of its upper position takes it before its
+// own pairs. So every position adds the opposites of its pairs from below (ascending), then its
+// pairs above (ascending), whatever the number of threads, and both particles of a pair get
+// exactly opposite forces: Newton's third law holds pair by pair. The virial (by part, its six
 // independent elements: r_ij ⊗ F_ij is symmetric for central forces) and the energy are summed per
 // position over its pairs above and reduced in position order. The order is a function of the
 // positions at the list's last build, which a checkpoint keeps (list_positions), so a resumed run
@@ -77,6 +79,11 @@ class DpdForceField {
  private:
   /// Copies the particles into the arrays of the list's order.
   void gather(const Particles& p);
+  /// The pairs of rows [begin, end), a block ending at block_end: with cross_only, only those
+  /// reaching past block_end, into their slots; otherwise all of them, into force_ (both positions
+  /// when both are below block_end) and the rows' sums. One function for both, so that a pair's
+  /// force has the same bits either way.
+  [[gnu::noinline]] void rows(std::size_t begin, std::size_t end, std::size_t block_end, bool cross_only, const Box& box);
 
   /// Per-position sums over the position's pairs above it: energy, then 3 parts × 6 virial elements.
   static constexpr int kPerParticle = 19;
@@ -89,8 +96,8 @@ class DpdForceField {
   // Per position of the list's order: positions, velocities, ids.
   std::vector<double> x_, y_, z_, vx_, vy_, vz_;
   std::vector<std::uint64_t> id_;
-  std::vector<double> slot_force_;  // 3 per listed pair: the force on the lower position
-  std::vector<double> row_force_;   // 3 per position: the sum over its pairs above
+  std::vector<double> slot_force_;  // 3 per listed pair: the force on the lower position (pairs across blocks only)
+  std::vector<double> force_;       // 3 per position
   std::vector<double> partial_;     // kPerParticle per position
   DpdSums sums_;
 };
