@@ -38,88 +38,86 @@ void DpdForceField::gather(const Particles& p) {
   }
 }
 
-namespace {
-
-/// One pair's force on its lower position and, for the sums, its parts and geometry.
-struct PairTerms {
-  double f[3];
-  double parts[3];  // conservative, dissipative, random, along r̂
-  double r, e[3], w;
-};
-
-}  // namespace
-
-// Not inlined: the pairs across blocks are evaluated twice, once into their slot and once for
-// their row, and both must give the same bits; one compiled body guarantees it (inlined into the
-// two versions of the loop, the compiler could contract the arithmetic differently, and did).
-/// d: r_k − r_j before the minimum image; false when the pair is beyond the cut-off.
-[[gnu::noinline]] static bool pair_terms(double* d, const Vec3& L, const Vec3& inv, double rc2, PairTerms& t) {
-  for (int e = 0; e < 3; ++e) d[e] -= L[e] * std::nearbyint(d[e] * inv[e]);
-  const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-  if (r2 >= rc2) return false;
-  t.r = std::sqrt(r2);
-  const double inv_r = 1.0 / t.r;
-  for (int m = 0; m < 3; ++m) t.e[m] = d[m] * inv_r;
-  return true;
-}
-
-/// The force of a pair within the cut-off (pair_terms filled r and e): dv = v_k − v_j.
-[[gnu::noinline]] static void pair_force(const double* dv, double theta, const DpdParameters& p, double sigma, PairTerms& t) {
-  t.w = 1.0 - t.r / p.cutoff;
-  const double along = t.e[0] * dv[0] + t.e[1] * dv[1] + t.e[2] * dv[2];
-  t.parts[0] = p.a * t.w;
-  t.parts[1] = -p.gamma * t.w * t.w * along;
-  t.parts[2] = sigma * t.w * theta;
-  const double total = t.parts[0] + t.parts[1] + t.parts[2];
-  for (int m = 0; m < 3; ++m) t.f[m] = total * t.e[m];
+void DpdForceField::row_forces(std::size_t k, std::size_t m_begin, std::size_t m_end, const Box& box, double* f_out, double* sum) const {
+  const Vec3 L = box.edges(), inv = box.inverse_edges();
+  const double rc = p_.cutoff, rc2 = rc * rc, inv_rc = 1.0 / rc;
+  const double a = p_.a, gamma = p_.gamma, sigma = noise_amplitude_, half_energy = 0.5 * a * rc;
+  const double xk = x_[k], yk = y_[k], zk = z_[k], vxk = vx_[k], vyk = vy_[k], vzk = vz_[k];
+  const std::uint64_t idk = id_[k];
+  const std::int32_t* row = list_.partners_above(k).data();
+  std::fill(f_out, f_out + 3 * (m_end - m_begin), 0.0);
+  // In batches: the separations of all candidates, the ones within the cut-off gathered without
+  // a branch (half of the candidates are, at random), then the forces of those.
+  constexpr std::size_t kBatch = 64;
+  double dx[kBatch], dy[kBatch], dz[kBatch], r2[kBatch];
+  std::uint32_t within[kBatch];
+  for (std::size_t first = m_begin; first < m_end; first += kBatch) {
+    const std::size_t count = std::min(kBatch, m_end - first);
+    for (std::size_t c = 0; c < count; ++c) {
+      const auto j = static_cast<std::size_t>(row[first + c]);
+      // r_kj = r_k − r_j, minimum image
+      double ddx = xk - x_[j], ddy = yk - y_[j], ddz = zk - z_[j];
+      ddx -= L.x() * std::nearbyint(ddx * inv.x());
+      ddy -= L.y() * std::nearbyint(ddy * inv.y());
+      ddz -= L.z() * std::nearbyint(ddz * inv.z());
+      dx[c] = ddx, dy[c] = ddy, dz[c] = ddz;
+      r2[c] = ddx * ddx + ddy * ddy + ddz * ddz;
+    }
+    std::size_t inside = 0;
+    for (std::size_t c = 0; c < count; ++c) {
+      within[inside] = static_cast<std::uint32_t>(c);
+      inside += r2[c] < rc2 ? 1 : 0;
+    }
+    for (std::size_t q = 0; q < inside; ++q) {
+      const std::size_t c = within[q];
+      const auto j = static_cast<std::size_t>(row[first + c]);
+      const double r = std::sqrt(r2[c]), inv_r = 1.0 / r;
+      const double ex = dx[c] * inv_r, ey = dy[c] * inv_r, ez = dz[c] * inv_r;
+      const double w = 1.0 - r * inv_rc;
+      const double along = ex * (vxk - vx_[j]) + ey * (vyk - vy_[j]) + ez * (vzk - vz_[j]);
+      const double theta = noise_.pair_normal(noise_step_, idk, id_[j]);
+      const double parts[3] = {a * w, -gamma * w * w * along, sigma * w * theta};
+      const double total = parts[0] + parts[1] + parts[2];
+      double* f = f_out + 3 * (first + c - m_begin);
+      f[0] = total * ex;
+      f[1] = total * ey;
+      f[2] = total * ez;
+      sum[0] += half_energy * w * w;
+      // r_kj ⊗ F_kj = f_m r (r̂ ⊗ r̂): xx, yy, zz, xy, xz, yz
+      const double qq[6] = {r * ex * ex, r * ey * ey, r * ez * ez, r * ex * ey, r * ex * ez, r * ey * ez};
+      for (int n = 0; n < 3; ++n)
+        for (int e = 0; e < 6; ++e) sum[1 + 6 * n + e] += parts[n] * qq[e];
+    }
+  }
 }
 
 void DpdForceField::rows(std::size_t begin, std::size_t end, std::size_t block_end, bool cross_only, const Box& box) {
-  const Vec3 L = box.edges(), inv = box.inverse_edges();
-  const double rc2 = p_.cutoff * p_.cutoff, sigma = noise_amplitude_, half_energy = 0.5 * p_.a * p_.cutoff;
-  const std::uint64_t step = noise_step_;
   double* force = force_.data();
+  std::vector<double> f;
   for (std::size_t k = begin; k < end; ++k) {
     const auto row = list_.partners_above(k);
-    // Cross pairs (partner beyond the block) are the row's tail: partners ascend.
-    const std::size_t cross = static_cast<std::size_t>(std::lower_bound(row.begin(), row.end(), static_cast<std::int32_t>(block_end)) - row.begin());
-    if (cross_only && cross == row.size()) continue;
+    // Pairs across the block (partner at or beyond block_end) are the row's tail: partners ascend.
+    const auto cross = static_cast<std::size_t>(std::lower_bound(row.begin(), row.end(), static_cast<std::int32_t>(block_end)) - row.begin());
     double sum[kPerParticle] = {};
-    const double xk = x_[k], yk = y_[k], zk = z_[k], vxk = vx_[k], vyk = vy_[k], vzk = vz_[k];
-    const std::uint64_t idk = id_[k];
-    for (std::size_t m = cross_only ? cross : 0; m < row.size(); ++m) {
-      const auto j = static_cast<std::size_t>(row[m]);
-      double d[3] = {xk - x_[j], yk - y_[j], zk - z_[j]};  // r_kj = r_k − r_j
-      PairTerms t;
-      if (!pair_terms(d, L, inv, rc2, t)) {
-        if (cross_only) std::fill_n(slot_force_.data() + 3 * (list_.first_pair(k) + m), 3, 0.0);  // the owner of j reads it
-        continue;
-      }
-      const double dv[3] = {vxk - vx_[j], vyk - vy_[j], vzk - vz_[j]};
-      pair_force(dv, noise_.pair_normal(step, idk, id_[j]), p_, sigma, t);
-      const double* f = t.f;
-      if (cross_only) {
-        double* slot = slot_force_.data() + 3 * (list_.first_pair(k) + m);
-        slot[0] = f[0], slot[1] = f[1], slot[2] = f[2];
-        continue;
-      }
-      force[3 * k] += f[0];
-      force[3 * k + 1] += f[1];
-      force[3 * k + 2] += f[2];
-      if (j < block_end) {
-        force[3 * j] -= f[0];
-        force[3 * j + 1] -= f[1];
-        force[3 * j + 2] -= f[2];
-      }
-      sum[0] += half_energy * t.w * t.w;
-      // r_kj ⊗ F_kj = f_m r (r̂ ⊗ r̂): xx, yy, zz, xy, xz, yz
-      const double q[6] = {t.r * t.e[0] * t.e[0], t.r * t.e[1] * t.e[1], t.r * t.e[2] * t.e[2],
-                           t.r * t.e[0] * t.e[1], t.r * t.e[0] * t.e[2], t.r * t.e[1] * t.e[2]};
-      for (int n = 0; n < 3; ++n)
-        for (int e = 0; e < 6; ++e) sum[1 + 6 * n + e] += t.parts[n] * q[e];
+    if (cross_only) {
+      if (cross == row.size()) continue;
+      row_forces(k, cross, row.size(), box, slot_force_.data() + 3 * (list_.first_pair(k) + cross), sum);
+      continue;
     }
-    if (!cross_only)
-      for (int n = 0; n < kPerParticle; ++n) partial_[kPerParticle * k + static_cast<std::size_t>(n)] = sum[n];
+    f.resize(3 * row.size());
+    row_forces(k, 0, row.size(), box, f.data(), sum);
+    for (std::size_t m = 0; m < row.size(); ++m) {
+      force[3 * k] += f[3 * m];
+      force[3 * k + 1] += f[3 * m + 1];
+      force[3 * k + 2] += f[3 * m + 2];
+    }
+    for (std::size_t m = 0; m < cross; ++m) {
+      const auto j = static_cast<std::size_t>(row[m]);
+      force[3 * j] -= f[3 * m];
+      force[3 * j + 1] -= f[3 * m + 1];
+      force[3 * j + 2] -= f[3 * m + 2];
+    }
+    for (int n = 0; n < kPerParticle; ++n) partial_[kPerParticle * k + static_cast<std::size_t>(n)] = sum[n];
   }
 }
 

@@ -81,9 +81,14 @@ class DpdForceField {
   void gather(const Particles& p);
   /// The pairs of rows [begin, end), a block ending at block_end: with cross_only, only those
   /// reaching past block_end, into their slots; otherwise all of them, into force_ (both positions
-  /// when both are below block_end) and the rows' sums. One function for both, so that a pair's
-  /// force has the same bits either way.
-  [[gnu::noinline]] void rows(std::size_t begin, std::size_t end, std::size_t block_end, bool cross_only, const Box& box);
+  /// when both are below block_end) and the rows' sums.
+  void rows(std::size_t begin, std::size_t end, std::size_t block_end, bool cross_only, const Box& box);
+  /// The forces on position k of its pairs m_begin … m_end − 1 (zero beyond the cut-off) into
+  /// f_out (3 each), their energy and virial added to sum. Both kinds of rows() call this one
+  /// compiled body, so that a pair's force has the same bits either way (inlined into two loops,
+  /// the compiler may contract the arithmetic differently).
+  [[gnu::noinline]] void row_forces(std::size_t k, std::size_t m_begin, std::size_t m_end, const Box& box, double* f_out,
+                                    double* sum) const;
 
   /// Per-position sums over the position's pairs above it: energy, then 3 parts × 6 virial elements.
   static constexpr int kPerParticle = 19;
