@@ -134,31 +134,48 @@ void CellOrderedPairs::find_pairs(const Box& box) {
 #ifdef _OPENMP
   blocks = omp_get_max_threads();
 #endif
-  std::vector<std::vector<std::int32_t>> found(static_cast<std::size_t>(blocks));
+  // Per block: its pairs, in a buffer kept from build to build (it only grows), and their count.
+  found_.resize(std::max(found_.size(), static_cast<std::size_t>(blocks)));
+  std::vector<std::size_t> found_count(static_cast<std::size_t>(blocks), 0);
   std::vector<std::size_t> row_end(n);
 #pragma omp parallel for schedule(static, 1) num_threads(blocks)
   for (int b = 0; b < blocks; ++b) {
-    std::vector<std::int32_t>& mine = found[static_cast<std::size_t>(b)];
-    mine.reserve(n / static_cast<std::size_t>(blocks) * 16);
     const std::size_t begin = n * static_cast<std::size_t>(b) / static_cast<std::size_t>(blocks);
     const std::size_t end = n * (static_cast<std::size_t>(b) + 1) / static_cast<std::size_t>(blocks);
+    // The pairs are written at `count` and kept by advancing it: no branch on the distance, which
+    // is as often in reach as not.
+    std::vector<std::int32_t>& mine = found_[static_cast<std::size_t>(b)];
+    if (mine.size() < (end - begin) * 16 + 1024) mine.resize((end - begin) * 32 + 1024);
+    std::size_t count = 0;
+    constexpr std::size_t kBatch = 64;
+    double r2[kBatch];
     for (std::size_t k = begin; k < end; ++k) {
       const double xk = sx_[k], yk = sy_[k], zk = sz_[k];
       auto scan = [&](std::size_t from, std::size_t to) {
-        for (std::size_t j = from; j < to; ++j) {
-          double dx = sx_[j] - xk, dy = sy_[j] - yk, dz = sz_[j] - zk;
-          dx -= L.x() * std::nearbyint(dx * inv.x());
-          dy -= L.y() * std::nearbyint(dy * inv.y());
-          dz -= L.z() * std::nearbyint(dz * inv.z());
-          if (dx * dx + dy * dy + dz * dz < reach2) mine.push_back(static_cast<std::int32_t>(j));
+        for (std::size_t first = from; first < to; first += kBatch) {
+          const std::size_t batch = std::min(kBatch, to - first);
+          for (std::size_t c = 0; c < batch; ++c) {
+            double dx = sx_[first + c] - xk, dy = sy_[first + c] - yk, dz = sz_[first + c] - zk;
+            dx -= L.x() * std::nearbyint(dx * inv.x());
+            dy -= L.y() * std::nearbyint(dy * inv.y());
+            dz -= L.z() * std::nearbyint(dz * inv.z());
+            r2[c] = dx * dx + dy * dy + dz * dz;
+          }
+          if (count + batch > mine.size()) mine.resize(2 * mine.size() + batch);
+          std::int32_t* out = mine.data();
+          for (std::size_t c = 0; c < batch; ++c) {
+            out[count] = static_cast<std::int32_t>(first + c);
+            count += r2[c] < reach2 ? 1 : 0;
+          }
         }
       };
       const auto c = static_cast<std::size_t>(cell_of_[k]);
       scan(k + 1, static_cast<std::size_t>(cell_start_[c + 1]));
       for (const std::int32_t nc : upper_cells_[c])
         scan(static_cast<std::size_t>(cell_start_[static_cast<std::size_t>(nc)]), static_cast<std::size_t>(cell_start_[static_cast<std::size_t>(nc) + 1]));
-      row_end[k] = mine.size();  // within the block, for now
+      row_end[k] = count;  // within the block, for now
     }
+    found_count[static_cast<std::size_t>(b)] = count;
   }
   first_pair_.assign(n + 1, 0);
   partners_.clear();
@@ -167,7 +184,8 @@ void CellOrderedPairs::find_pairs(const Box& box) {
     const std::size_t begin = n * static_cast<std::size_t>(b) / static_cast<std::size_t>(blocks);
     const std::size_t end = n * (static_cast<std::size_t>(b) + 1) / static_cast<std::size_t>(blocks);
     for (std::size_t k = begin; k < end; ++k) first_pair_[k + 1] = row_end[k] + offset;
-    partners_.insert(partners_.end(), found[static_cast<std::size_t>(b)].begin(), found[static_cast<std::size_t>(b)].end());
+    const auto& mine = found_[static_cast<std::size_t>(b)];
+    partners_.insert(partners_.end(), mine.begin(), mine.begin() + static_cast<std::ptrdiff_t>(found_count[static_cast<std::size_t>(b)]));
   }
 }
 

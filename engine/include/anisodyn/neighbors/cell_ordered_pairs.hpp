@@ -77,6 +77,7 @@ class CellOrderedPairs {
   std::vector<std::int32_t> partners_;
   std::vector<std::size_t> lower_start_;              // [n + 1]
   std::vector<std::int32_t> lower_;
+  std::vector<std::vector<std::int32_t>> found_;      // per thread block: the pairs it found (a buffer that only grows)
   std::int64_t builds_ = 0;
 };
 
