@@ -103,8 +103,9 @@ def lammps():
             current = []
             blocks.append(current)
         else:  # Index TimeDelta Ncount pxy*pxy pxz*pxz pyz*pyz
-            current.append([float(fields[1]) * DT] + [float(v) for v in fields[3:6]])
-    blocks = [np.array(b) for b in blocks if len(b) == lags]
+            current.append([float(fields[1]) * DT] + [float(v) for v in fields[3:6]] + [float(fields[2])])
+    # Whole blocks only: the first output (the production's step 0) holds one sample and no lag.
+    blocks = [np.array(b) for b in blocks if len(b) == lags and b[-1][4] > 0]
     lag = blocks[0][:, 0]
     return plateau_of_blocks(lag, [b[:, 1:4].mean(axis=1) for b in blocks], L ** 3), len(blocks)
 

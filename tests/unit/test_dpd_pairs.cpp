@@ -9,6 +9,7 @@
 #include <omp.h>
 
 #include "anisodyn/core/keyed_random.hpp"
+#include "anisodyn/core/pair_noise.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -53,7 +54,7 @@ struct Reference {
 
 /// Spec 30 §2 summed over all pairs i < j.
 Reference reference(const State& s, std::uint64_t step) {
-  const KeyedRandom noise(kSeed, kDpdPairNoise);
+  const PairNoise noise(kSeed, kDpdPairNoise);
   const Particles& p = s.particles;
   Reference out;
   out.force.assign(p.size(), {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
@@ -65,7 +66,7 @@ Reference reference(const State& s, std::uint64_t step) {
       ++out.pairs;
       const Vec3 e = rij / r;
       const double w = 1.0 - r;
-      const double theta = noise.pair_normal(step, static_cast<std::uint64_t>(p.id[i]), static_cast<std::uint64_t>(p.id[j]));
+      const double theta = noise(step, static_cast<std::uint32_t>(p.id[i]), static_cast<std::uint32_t>(p.id[j]));
       const std::array<Vec3, 3> f{kA * w * e, -kGamma * w * w * e.dot(p.velocity(i) - p.velocity(j)) * e,
                                   std::sqrt(2.0 * kGamma / kDt) * w * theta * e};
       for (int k = 0; k < 3; ++k) {
@@ -137,16 +138,16 @@ TEST(DpdPairs, NewtonsThirdLawHoldsPairByPair) {
 }
 
 TEST(DpdPairs, PairNoiseIsSymmetricUnitNormalAndNewEachStep) {
-  const KeyedRandom noise(kSeed, kDpdPairNoise);
+  const PairNoise noise(kSeed, kDpdPairNoise);
   double sum = 0, sum2 = 0, lag = 0;
   const int n = 200000;
   for (int k = 0; k < n; ++k) {
-    const auto i = static_cast<std::uint64_t>(k % 1000), j = static_cast<std::uint64_t>(1000 + k / 1000);
-    const double x = noise.pair_normal(5, i, j);
-    ASSERT_EQ(x, noise.pair_normal(5, j, i));
+    const auto i = static_cast<std::uint32_t>(k % 1000), j = static_cast<std::uint32_t>(1000 + k / 1000);
+    const double x = noise(5, i, j);
+    ASSERT_EQ(x, noise(5, j, i));
     sum += x;
     sum2 += x * x;
-    lag += x * noise.pair_normal(6, i, j);
+    lag += x * noise(6, i, j);
   }
   // Mean 0, variance 1 and no correlation between steps, each within 4 standard errors.
   EXPECT_LT(std::abs(sum / n), 4.0 / std::sqrt(n));

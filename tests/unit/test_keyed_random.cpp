@@ -1,6 +1,7 @@
-// KeyedRandom (core/keyed_random.hpp): draws addressed by key and counter, the pair symmetry, the
-// same values for any thread count, and the distribution of the normals and uniforms against
-// their closed-form moments (tolerances 4 standard errors of each estimator) and a
+// KeyedRandom (core/keyed_random.hpp) and PairNoise (core/pair_noise.hpp): draws addressed by key
+// and counter, the pair symmetry, the same values for any thread count and batch, PairNoise's
+// generator against Random123's Philox4x32-10, and the distribution of the normals and uniforms
+// against their closed-form moments (tolerances 4 standard errors of each estimator) and a
 // Kolmogorov–Smirnov bound.
 #include <gtest/gtest.h>
 
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "anisodyn/core/keyed_random.hpp"
+#include "anisodyn/core/pair_noise.hpp"
 
 using namespace anisodyn;
 
@@ -30,22 +32,52 @@ TEST(KeyedRandom, ADrawDependsOnlyOnItsKeyAndCounter) {
   EXPECT_EQ(r.uniform(9, 1, 2, 6), r.uniform(9, 1, 2, 6));
 }
 
-TEST(KeyedRandom, PairDrawsAreSymmetric) {
-  const KeyedRandom r(7, 3);
-  for (std::uint64_t i = 0; i < 50; ++i)
-    for (std::uint64_t j = 0; j < 50; ++j) ASSERT_EQ(r.pair_normal(11, i, j), r.pair_normal(11, j, i));
-  EXPECT_NE(r.pair_normal(11, 1, 2), r.pair_normal(11, 1, 3));
+TEST(PairNoise, PairDrawsAreSymmetric) {
+  const PairNoise r(7, 3);
+  for (std::uint32_t i = 0; i < 50; ++i)
+    for (std::uint32_t j = 0; j < 50; ++j) ASSERT_EQ(r(11, i, j), r(11, j, i));
+  EXPECT_NE(r(11, 1, 2), r(11, 1, 3));
+  EXPECT_NE(r(11, 1, 2), r(12, 1, 2));
+  EXPECT_NE(r(11, 1, 2), r(11ULL + (1ULL << 32), 1, 2));  // the high word of the step counts
+  EXPECT_NE(r(11, 1, 2), PairNoise(8, 3)(11, 1, 2));
 }
 
-TEST(KeyedRandom, ValuesDoNotDependOnTheThreadCount) {
+TEST(PairNoise, TheGeneratorIsRandom123sPhilox4x32) {
+  // The uniform behind θ, rebuilt from r123::Philox4x32 (10 rounds) on counter (step low, step
+  // high, min id, max id) and PairNoise's key: the 53 bits of words 0 and 1, then the quantile.
+  const PairNoise r(2026, 9);
+  const r123::Philox4x32::key_type key = {{r.key(0), r.key(1)}};
+  r123::Philox4x32 philox;
+  for (std::uint64_t step : {0ULL, 1ULL, 123456789ULL, (7ULL << 32) + 5ULL})
+    for (std::uint32_t i : {0u, 3u, 99999u, 4000000000u}) {
+      const std::uint32_t j = i ^ 0x5a5au;
+      const r123::Philox4x32::ctr_type ctr = {{static_cast<std::uint32_t>(step), static_cast<std::uint32_t>(step >> 32), std::min(i, j), std::max(i, j)}};
+      const auto w = philox(ctr, key);
+      const std::uint64_t bits = (static_cast<std::uint64_t>(w[0]) << 21) | (w[1] >> 11);
+      EXPECT_EQ(r(step, i, j), KeyedRandom::normal_quantile((static_cast<double>(bits) + 0.5) * 0x1.0p-53)) << step << " " << i;
+    }
+}
+
+TEST(PairNoise, ABatchGivesTheBitsOfSinglePairs) {
+  const PairNoise r(5, 1);
+  for (std::size_t n : {1u, 7u, 16u, 17u, 100u}) {
+    std::vector<std::uint32_t> a(n), b(n);
+    for (std::size_t m = 0; m < n; ++m) a[m] = static_cast<std::uint32_t>(31 * m + 7), b[m] = static_cast<std::uint32_t>(1000 - 3 * m);
+    std::vector<double> out(n);
+    r.normals(42, a.data(), b.data(), n, out.data());
+    for (std::size_t m = 0; m < n; ++m) ASSERT_EQ(out[m], r(42, a[m], b[m])) << n << " " << m;
+  }
+}
+
+TEST(PairNoise, ValuesDoNotDependOnTheThreadCount) {
   // Pair noise of a pair list filled in parallel, in whatever order the threads take the pairs.
-  const KeyedRandom r(99, 5);
+  const PairNoise r(99, 5);
   const std::int64_t pairs = 20000;
   auto fill = [&](int threads) {
     std::vector<double> theta(static_cast<std::size_t>(pairs));
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 7)
     for (std::int64_t p = 0; p < pairs; ++p)
-      theta[static_cast<std::size_t>(p)] = r.pair_normal(42, static_cast<std::uint64_t>(p % 997), static_cast<std::uint64_t>(p / 997 + 1000));
+      theta[static_cast<std::size_t>(p)] = r(42, static_cast<std::uint32_t>(p % 997), static_cast<std::uint32_t>(p / 997 + 1000));
     return theta;
   };
   const auto one = fill(1);
@@ -170,12 +202,12 @@ TEST(KeyedRandom, NormalQuantileInvertsTheNormalCdf) {
   EXPECT_NEAR(KeyedRandom::normal_quantile(0.975), 1.959963984540054, 1e-8);  // the two-sided 95% point
 }
 
-TEST(KeyedRandom, PairNormalsHaveTheMomentsAndDistributionOfAStandardNormal) {
-  const KeyedRandom r(2024, 11);
+TEST(PairNoise, PairNormalsHaveTheMomentsAndDistributionOfAStandardNormal) {
+  const PairNoise r(2024, 11);
   std::vector<double> x, next;
-  for (std::uint64_t k = 0; k < 400000; ++k) {
-    x.push_back(r.pair_normal(3, k % 1000, 1000 + k / 1000));
-    next.push_back(r.pair_normal(4, k % 1000, 1000 + k / 1000));
+  for (std::uint32_t k = 0; k < 400000; ++k) {
+    x.push_back(r(3, k % 1000, 1000 + k / 1000));
+    next.push_back(r(4, k % 1000, 1000 + k / 1000));
   }
   const double n = static_cast<double>(x.size());
   const Moments m = moments(x);

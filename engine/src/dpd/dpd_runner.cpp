@@ -98,6 +98,9 @@ DpdRunner::DpdRunner(State& state, const DpdProtocol& protocol, const std::strin
                                                        ") along every edge, for the minimum image");
   for (const Species& sp : state_.species)
     if (!(sp.mass > 0.0)) throw InputError(config_file, "liquid.species", "expected a positive mass for species '" + sp.name + "'");
+  for (const std::int64_t id : state_.particles.id)
+    if (id < 0 || id > 0xFFFFFFFFLL)
+      throw InputError(config_file, "liquid", "expected particle ids in 0 … 2^32 − 1 (the pair noise is keyed by them), got " + std::to_string(id));
   // Checked here, where an error still writes nothing; the velocities are drawn when a fresh run
   // starts (a resumed one has the checkpoint's).
   if (protocol_.velocities == DpdProtocol::Velocities::Input && !state_.particles.has_velocities())

@@ -34,27 +34,31 @@ void DpdForceField::gather(const Particles& p) {
     vx_[k] = p.vx[i];
     vy_[k] = p.vy[i];
     vz_[k] = p.vz[i];
-    id_[k] = static_cast<std::uint64_t>(p.id[i]);
+    id_[k] = static_cast<std::uint32_t>(p.id[i]);  // below 2³² (checked by the engine)
   }
 }
 
-void DpdForceField::row_forces(std::size_t k, std::size_t m_begin, std::size_t m_end, const Box& box, double* f_out, double* sum) const {
+void DpdForceField::row_forces(const RowTask* tasks, std::size_t count, std::size_t block_end, bool cross_only, const Box& box) {
   const Vec3 L = box.edges(), inv = box.inverse_edges();
   const double rc = p_.cutoff, rc2 = rc * rc, inv_rc = 1.0 / rc;
   const double a = p_.a, gamma = p_.gamma, sigma = noise_amplitude_, half_energy = 0.5 * a * rc;
-  const double xk = x_[k], yk = y_[k], zk = z_[k], vxk = vx_[k], vyk = vy_[k], vzk = vz_[k];
-  const std::uint64_t idk = id_[k];
-  const std::int32_t* row = list_.partners_above(k).data();
-  std::fill(f_out, f_out + 3 * (m_end - m_begin), 0.0);
-  // In batches: the separations of all candidates, the ones within the cut-off gathered without
-  // a branch (half of the candidates are, at random), then the forces of those.
-  constexpr std::size_t kBatch = 64;
-  double dx[kBatch], dy[kBatch], dz[kBatch], r2[kBatch];
-  std::uint32_t within[kBatch];
-  for (std::size_t first = m_begin; first < m_end; first += kBatch) {
-    const std::size_t count = std::min(kBatch, m_end - first);
-    for (std::size_t c = 0; c < count; ++c) {
-      const auto j = static_cast<std::size_t>(row[first + c]);
+  // Scratch of this thread, grown as needed: the candidates of all the rows, then those within the
+  // cut-off, gathered without a branch (half of the candidates are, at random).
+  thread_local std::vector<double> dx, dy, dz, r2, theta;
+  thread_local std::vector<std::uint32_t> task_of, partner, within, id_a, id_b;
+  std::size_t candidates = 0;
+  for (std::size_t t = 0; t < count; ++t) candidates += tasks[t].m_end - tasks[t].m_begin;
+  if (dx.size() < candidates) {
+    for (auto* v : {&dx, &dy, &dz, &r2, &theta}) v->resize(2 * candidates);
+    for (auto* v : {&task_of, &partner, &within, &id_a, &id_b}) v->resize(2 * candidates);
+  }
+  std::size_t c = 0;
+  for (std::size_t t = 0; t < count; ++t) {
+    const RowTask& task = tasks[t];
+    const double xk = x_[task.k], yk = y_[task.k], zk = z_[task.k];
+    const std::int32_t* row = list_.partners_above(task.k).data();
+    for (std::size_t m = task.m_begin; m < task.m_end; ++m, ++c) {
+      const auto j = static_cast<std::size_t>(row[m]);
       // r_kj = r_k − r_j, minimum image
       double ddx = xk - x_[j], ddy = yk - y_[j], ddz = zk - z_[j];
       ddx -= L.x() * std::nearbyint(ddx * inv.x());
@@ -62,62 +66,77 @@ void DpdForceField::row_forces(std::size_t k, std::size_t m_begin, std::size_t m
       ddz -= L.z() * std::nearbyint(ddz * inv.z());
       dx[c] = ddx, dy[c] = ddy, dz[c] = ddz;
       r2[c] = ddx * ddx + ddy * ddy + ddz * ddz;
+      task_of[c] = static_cast<std::uint32_t>(t);
+      partner[c] = static_cast<std::uint32_t>(j);
     }
-    std::size_t inside = 0;
-    for (std::size_t c = 0; c < count; ++c) {
-      within[inside] = static_cast<std::uint32_t>(c);
-      inside += r2[c] < rc2 ? 1 : 0;
+  }
+  std::size_t inside = 0;
+  for (std::size_t q = 0; q < candidates; ++q) {
+    within[inside] = static_cast<std::uint32_t>(q);
+    id_a[inside] = id_[tasks[task_of[q]].k];
+    id_b[inside] = id_[partner[q]];
+    inside += r2[q] < rc2 ? 1 : 0;
+  }
+  // The noise of all pairs within the cut-off in one batch (vectorised: core/pair_noise.hpp).
+  noise_.normals(noise_step_, id_a.data(), id_b.data(), inside, theta.data());
+  double* force = force_.data();
+  for (std::size_t q = 0; q < inside; ++q) {
+    const std::size_t cand = within[q], j = partner[cand];
+    const RowTask& task = tasks[task_of[cand]];
+    const std::size_t k = task.k;
+    const double r = std::sqrt(r2[cand]), inv_r = 1.0 / r;
+    const double ex = dx[cand] * inv_r, ey = dy[cand] * inv_r, ez = dz[cand] * inv_r;
+    const double w = 1.0 - r * inv_rc;
+    const double along = ex * (vx_[k] - vx_[j]) + ey * (vy_[k] - vy_[j]) + ez * (vz_[k] - vz_[j]);
+    const double parts[3] = {a * w, -gamma * w * w * along, sigma * w * theta[q]};
+    const double total = parts[0] + parts[1] + parts[2];
+    const double f[3] = {total * ex, total * ey, total * ez};
+    if (cross_only) {
+      // Into the pair's slot, for the owner of j.
+      double* slot = slot_force_.data() + 3 * (list_.first_pair(k) + task.m_begin) + 3 * (cand - task.first_candidate);
+      slot[0] = f[0], slot[1] = f[1], slot[2] = f[2];
+      continue;
     }
-    for (std::size_t q = 0; q < inside; ++q) {
-      const std::size_t c = within[q];
-      const auto j = static_cast<std::size_t>(row[first + c]);
-      const double r = std::sqrt(r2[c]), inv_r = 1.0 / r;
-      const double ex = dx[c] * inv_r, ey = dy[c] * inv_r, ez = dz[c] * inv_r;
-      const double w = 1.0 - r * inv_rc;
-      const double along = ex * (vxk - vx_[j]) + ey * (vyk - vy_[j]) + ez * (vzk - vz_[j]);
-      const double theta = noise_.pair_normal(noise_step_, idk, id_[j]);
-      const double parts[3] = {a * w, -gamma * w * w * along, sigma * w * theta};
-      const double total = parts[0] + parts[1] + parts[2];
-      double* f = f_out + 3 * (first + c - m_begin);
-      f[0] = total * ex;
-      f[1] = total * ey;
-      f[2] = total * ez;
-      sum[0] += half_energy * w * w;
-      // r_kj ⊗ F_kj = f_m r (r̂ ⊗ r̂): xx, yy, zz, xy, xz, yz
-      const double qq[6] = {r * ex * ex, r * ey * ey, r * ez * ez, r * ex * ey, r * ex * ez, r * ey * ez};
-      for (int n = 0; n < 3; ++n)
-        for (int e = 0; e < 6; ++e) sum[1 + 6 * n + e] += parts[n] * qq[e];
+    force[3 * k] += f[0];
+    force[3 * k + 1] += f[1];
+    force[3 * k + 2] += f[2];
+    if (j < block_end) {
+      force[3 * j] -= f[0];
+      force[3 * j + 1] -= f[1];
+      force[3 * j + 2] -= f[2];
     }
+    double* sum = partial_.data() + kPerParticle * k;
+    sum[0] += half_energy * w * w;
+    // r_kj ⊗ F_kj = f_m r (r̂ ⊗ r̂): xx, yy, zz, xy, xz, yz
+    const double qq[6] = {r * ex * ex, r * ey * ey, r * ez * ez, r * ex * ey, r * ex * ez, r * ey * ez};
+    for (int n = 0; n < 3; ++n)
+      for (int e = 0; e < 6; ++e) sum[1 + 6 * n + e] += parts[n] * qq[e];
   }
 }
 
 void DpdForceField::rows(std::size_t begin, std::size_t end, std::size_t block_end, bool cross_only, const Box& box) {
-  double* force = force_.data();
-  std::vector<double> f;
-  for (std::size_t k = begin; k < end; ++k) {
-    const auto row = list_.partners_above(k);
-    // Pairs across the block (partner at or beyond block_end) are the row's tail: partners ascend.
-    const auto cross = static_cast<std::size_t>(std::lower_bound(row.begin(), row.end(), static_cast<std::int32_t>(block_end)) - row.begin());
-    double sum[kPerParticle] = {};
-    if (cross_only) {
-      if (cross == row.size()) continue;
-      row_forces(k, cross, row.size(), box, slot_force_.data() + 3 * (list_.first_pair(k) + cross), sum);
-      continue;
+  // Rows go to row_forces in groups, so that the noise of a group is drawn in one batch.
+  constexpr std::size_t kRowsPerGroup = 32;
+  std::vector<RowTask> tasks;
+  for (std::size_t group = begin; group < end; group += kRowsPerGroup) {
+    const std::size_t group_end = std::min(end, group + kRowsPerGroup);
+    tasks.clear();
+    std::size_t candidates = 0;
+    for (std::size_t k = group; k < group_end; ++k) {
+      const auto row = list_.partners_above(k);
+      std::size_t m_begin = 0;
+      if (cross_only) {
+        // Pairs across the block (partner at or beyond block_end) are the row's tail: partners ascend.
+        m_begin = static_cast<std::size_t>(std::lower_bound(row.begin(), row.end(), static_cast<std::int32_t>(block_end)) - row.begin());
+        if (m_begin == row.size()) continue;
+        std::fill_n(slot_force_.data() + 3 * (list_.first_pair(k) + m_begin), 3 * (row.size() - m_begin), 0.0);  // beyond the cut-off: 0
+      } else {
+        std::fill_n(partial_.data() + kPerParticle * k, kPerParticle, 0.0);
+      }
+      tasks.push_back({k, m_begin, row.size(), candidates});
+      candidates += row.size() - m_begin;
     }
-    f.resize(3 * row.size());
-    row_forces(k, 0, row.size(), box, f.data(), sum);
-    for (std::size_t m = 0; m < row.size(); ++m) {
-      force[3 * k] += f[3 * m];
-      force[3 * k + 1] += f[3 * m + 1];
-      force[3 * k + 2] += f[3 * m + 2];
-    }
-    for (std::size_t m = 0; m < cross; ++m) {
-      const auto j = static_cast<std::size_t>(row[m]);
-      force[3 * j] -= f[3 * m];
-      force[3 * j + 1] -= f[3 * m + 1];
-      force[3 * j + 2] -= f[3 * m + 2];
-    }
-    for (int n = 0; n < kPerParticle; ++n) partial_[kPerParticle * k + static_cast<std::size_t>(n)] = sum[n];
+    if (!tasks.empty()) row_forces(tasks.data(), tasks.size(), block_end, cross_only, box);
   }
 }
 

@@ -58,31 +58,28 @@ class KeyedRandom {
     }
   }
 
-  /// The pair draw θ_ij, a standard normal: the same for (i, j) and (j, i). It is the normal
-  /// quantile of one 53-bit uniform of block 0 (normal_quantile), not Box–Muller: a DPD step draws
-  /// one per interacting pair, and a logarithm and a cosine for each were a fifth of the step.
-  double pair_normal(std::uint64_t step, std::uint64_t i, std::uint64_t j) const {
-    const auto w = block(step, std::min(i, j), std::max(i, j), 0);
-    return normal_quantile((static_cast<double>(w[0] >> 11) + 0.5) * 0x1.0p-53);
+  /// Acklam's central region: kQuantileCentral ≤ p ≤ 1 − kQuantileCentral.
+  static constexpr double kQuantileCentral = 0.02425;
+  /// Φ⁻¹(p) in the central region: a rational function of p − ½ (no branch, so it vectorises).
+  static double normal_quantile_central(double p) {
+    static constexpr double a[6] = {-3.969683028665376e+01, 2.209460984245205e+02, -2.759285104469687e+02,
+                                    1.383577518672690e+02, -3.066479806614716e+01, 2.506628277459239e+00};
+    static constexpr double b[5] = {-5.447609879822406e+01, 1.615858368580409e+02, -1.556989798598866e+02,
+                                    6.680131188771972e+01, -1.328068155288572e+01};
+    const double q = p - 0.5, r = q * q;
+    return (((((a[0] * r + a[1]) * r + a[2]) * r + a[3]) * r + a[4]) * r + a[5]) * q /
+           (((((b[0] * r + b[1]) * r + b[2]) * r + b[3]) * r + b[4]) * r + 1.0);
   }
 
   /// Φ⁻¹(p) for 0 < p < 1, by Acklam's rational approximation (relative error below 1.2e-9): a
   /// rational function of p − ½ for 0.02425 ≤ p ≤ 0.97575, which 95% of the draws take, and of
   /// √(−2 ln p) in the tails.
   static double normal_quantile(double p) {
-    static constexpr double a[6] = {-3.969683028665376e+01, 2.209460984245205e+02, -2.759285104469687e+02,
-                                    1.383577518672690e+02, -3.066479806614716e+01, 2.506628277459239e+00};
-    static constexpr double b[5] = {-5.447609879822406e+01, 1.615858368580409e+02, -1.556989798598866e+02,
-                                    6.680131188771972e+01, -1.328068155288572e+01};
     static constexpr double c[6] = {-7.784894002430293e-03, -3.223964580411365e-01, -2.400758277161838e+00,
                                     -2.549732539343734e+00, 4.374664141464968e+00, 2.938163982698783e+00};
     static constexpr double d[4] = {7.784695709041462e-03, 3.224671290700398e-01, 2.445134137142996e+00, 3.754408661907416e+00};
-    constexpr double low = 0.02425;
-    if (p >= low && p <= 1.0 - low) {
-      const double q = p - 0.5, r = q * q;
-      return (((((a[0] * r + a[1]) * r + a[2]) * r + a[3]) * r + a[4]) * r + a[5]) * q /
-             (((((b[0] * r + b[1]) * r + b[2]) * r + b[3]) * r + b[4]) * r + 1.0);
-    }
+    constexpr double low = kQuantileCentral;
+    if (p >= low && p <= 1.0 - low) return normal_quantile_central(p);
     const double q = std::sqrt(-2.0 * std::log(p < low ? p : 1.0 - p));
     const double x = (((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
                      ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1.0);

@@ -7,7 +7,7 @@
 //   dissipative   F^D = −γ w² (r̂·v_ij) r̂
 //   random        F^R = √(2 γ kT) w θ_ij Δt^{−1/2} r̂
 //
-// θ_ij is a unit normal from the keyed generator (core/keyed_random.hpp), addressed by the noise
+// θ_ij is a unit normal from the pair noise (core/pair_noise.hpp), addressed by the noise
 // step and the two particles' ids: the same for (i, j) and (j, i), whatever the thread count or the
 // order of the pairs.
 //
@@ -34,7 +34,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "anisodyn/core/keyed_random.hpp"
+#include "anisodyn/core/pair_noise.hpp"
 #include "anisodyn/integrate/body_forces.hpp"
 #include "anisodyn/neighbors/cell_ordered_pairs.hpp"
 #include "anisodyn/system/state.hpp"
@@ -83,24 +83,26 @@ class DpdForceField {
   /// reaching past block_end, into their slots; otherwise all of them, into force_ (both positions
   /// when both are below block_end) and the rows' sums.
   void rows(std::size_t begin, std::size_t end, std::size_t block_end, bool cross_only, const Box& box);
-  /// The forces on position k of its pairs m_begin … m_end − 1 (zero beyond the cut-off) into
-  /// f_out (3 each), their energy and virial added to sum. Both kinds of rows() call this one
-  /// compiled body, so that a pair's force has the same bits either way (inlined into two loops,
-  /// the compiler may contract the arithmetic differently).
-  [[gnu::noinline]] void row_forces(std::size_t k, std::size_t m_begin, std::size_t m_end, const Box& box, double* f_out,
-                                    double* sum) const;
+  /// Pairs m_begin … m_end − 1 of row k; first_candidate: their place among the group's pairs.
+  struct RowTask {
+    std::size_t k, m_begin, m_end, first_candidate;
+  };
+  /// Evaluates a group of row tasks, the noise of all their pairs in one batch: with cross_only
+  /// into their slots, otherwise into force_ (both positions when both are below block_end) and
+  /// the rows' sums. One compiled body for both, so that a pair's force has the same bits either way.
+  [[gnu::noinline]] void row_forces(const RowTask* tasks, std::size_t count, std::size_t block_end, bool cross_only, const Box& box);
 
   /// Per-position sums over the position's pairs above it: energy, then 3 parts × 6 virial elements.
   static constexpr int kPerParticle = 19;
 
   DpdParameters p_;
   double noise_amplitude_;  // √(2γkT/Δt)
-  KeyedRandom noise_;
+  PairNoise noise_;
   CellOrderedPairs list_;
   std::uint64_t noise_step_ = 0;
   // Per position of the list's order: positions, velocities, ids.
   std::vector<double> x_, y_, z_, vx_, vy_, vz_;
-  std::vector<std::uint64_t> id_;
+  std::vector<std::uint32_t> id_;
   std::vector<double> slot_force_;  // 3 per listed pair: the force on the lower position (pairs across blocks only)
   std::vector<double> force_;       // 3 per position
   std::vector<double> partial_;     // kPerParticle per position

@@ -1,0 +1,63 @@
+#include "anisodyn/core/pair_noise.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "anisodyn/core/keyed_random.hpp"
+
+namespace anisodyn {
+
+namespace {
+
+// Philox4x32 constants (Random123): multipliers and the Weyl key increments.
+constexpr std::uint32_t kM0 = 0xD2511F53u, kM1 = 0xCD9E8D57u, kW0 = 0x9E3779B9u, kW1 = 0xBB67AE85u;
+constexpr int kRounds = 10;
+constexpr std::size_t kLanes = 16;
+
+}  // namespace
+
+PairNoise::PairNoise(std::uint64_t seed, std::uint64_t purpose) {
+  const std::uint64_t k = KeyedRandom(seed, purpose).block(0, 0, 0, 0)[0];
+  key_[0] = static_cast<std::uint32_t>(k);
+  key_[1] = static_cast<std::uint32_t>(k >> 32);
+}
+
+void PairNoise::normals(std::uint64_t step, const std::uint32_t* a, const std::uint32_t* b, std::size_t n, double* out) const {
+  const auto step_lo = static_cast<std::uint32_t>(step), step_hi = static_cast<std::uint32_t>(step >> 32);
+  for (std::size_t first = 0; first < n; first += kLanes) {
+    const std::size_t lanes = std::min(kLanes, n - first);
+    std::uint32_t c0[kLanes], c1[kLanes], c2[kLanes], c3[kLanes];
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      const std::size_t m = first + std::min(l, lanes - 1);  // spare lanes repeat the last pair
+      c0[l] = step_lo;
+      c1[l] = step_hi;
+      c2[l] = std::min(a[m], b[m]);
+      c3[l] = std::max(a[m], b[m]);
+    }
+    std::uint32_t k0 = key_[0], k1 = key_[1];
+    for (int round = 0; round < kRounds; ++round) {
+      for (std::size_t l = 0; l < kLanes; ++l) {
+        const std::uint64_t p0 = static_cast<std::uint64_t>(kM0) * c0[l], p1 = static_cast<std::uint64_t>(kM1) * c2[l];
+        const std::uint32_t n0 = static_cast<std::uint32_t>(p1 >> 32) ^ c1[l] ^ k0, n2 = static_cast<std::uint32_t>(p0 >> 32) ^ c3[l] ^ k1;
+        c1[l] = static_cast<std::uint32_t>(p1);
+        c3[l] = static_cast<std::uint32_t>(p0);
+        c0[l] = n0;
+        c2[l] = n2;
+      }
+      k0 += kW0;
+      k1 += kW1;
+    }
+    double p[kLanes], x[kLanes];
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      // 53 bits: all 32 of word 0, the top 21 of word 1; + ½ keeps p inside (0, 1).
+      const std::uint64_t bits = (static_cast<std::uint64_t>(c0[l]) << 21) | (c1[l] >> 11);
+      p[l] = (static_cast<double>(bits) + 0.5) * 0x1.0p-53;
+      x[l] = KeyedRandom::normal_quantile_central(p[l]);
+    }
+    // The 5% of draws in the tails take the scalar quantile (a logarithm).
+    constexpr double low = KeyedRandom::kQuantileCentral;
+    for (std::size_t l = 0; l < lanes; ++l) out[first + l] = (p[l] >= low && p[l] <= 1.0 - low) ? x[l] : KeyedRandom::normal_quantile(p[l]);
+  }
+}
+
+}  // namespace anisodyn
