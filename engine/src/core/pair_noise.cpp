@@ -34,18 +34,21 @@ void PairNoise::normals(std::uint64_t step, const std::uint32_t* a, const std::u
       c2[l] = std::min(a[m], b[m]);
       c3[l] = std::max(a[m], b[m]);
     }
-    std::uint32_t k0 = key_[0], k1 = key_[1];
-    for (int round = 0; round < kRounds; ++round) {
-      for (std::size_t l = 0; l < kLanes; ++l) {
-        const std::uint64_t p0 = static_cast<std::uint64_t>(kM0) * c0[l], p1 = static_cast<std::uint64_t>(kM1) * c2[l];
-        const std::uint32_t n0 = static_cast<std::uint32_t>(p1 >> 32) ^ c1[l] ^ k0, n2 = static_cast<std::uint32_t>(p0 >> 32) ^ c3[l] ^ k1;
-        c1[l] = static_cast<std::uint32_t>(p1);
-        c3[l] = static_cast<std::uint32_t>(p0);
-        c0[l] = n0;
-        c2[l] = n2;
+    // Lane by lane with the rounds unrolled, so that the lane loop is what the compiler vectorises.
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      std::uint32_t x0 = c0[l], x1 = c1[l], x2 = c2[l], x3 = c3[l], k0 = key_[0], k1 = key_[1];
+#pragma GCC unroll 10
+      for (int round = 0; round < kRounds; ++round) {
+        const std::uint64_t p0 = static_cast<std::uint64_t>(kM0) * x0, p1 = static_cast<std::uint64_t>(kM1) * x2;
+        x0 = static_cast<std::uint32_t>(p1 >> 32) ^ x1 ^ k0;
+        x2 = static_cast<std::uint32_t>(p0 >> 32) ^ x3 ^ k1;
+        x1 = static_cast<std::uint32_t>(p1);
+        x3 = static_cast<std::uint32_t>(p0);
+        k0 += kW0;
+        k1 += kW1;
       }
-      k0 += kW0;
-      k1 += kW1;
+      c0[l] = x0;
+      c1[l] = x1;
     }
     double p[kLanes], x[kLanes];
     for (std::size_t l = 0; l < kLanes; ++l) {
