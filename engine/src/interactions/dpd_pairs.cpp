@@ -43,14 +43,15 @@ void DpdForceField::row_forces(const RowTask* tasks, std::size_t count, std::siz
   const double rc = p_.cutoff, rc2 = rc * rc, inv_rc = 1.0 / rc;
   const double a = p_.a, gamma = p_.gamma, sigma = noise_amplitude_, half_energy = 0.5 * a * rc;
   // Scratch of this thread, grown as needed: the candidates of all the rows, then those within the
-  // cut-off, gathered without a branch (half of the candidates are, at random).
-  thread_local std::vector<double> dx, dy, dz, r2, theta;
-  thread_local std::vector<std::uint32_t> task_of, partner, within, id_a, id_b;
+  // cut-off, gathered without a branch (half of the candidates are, at random), then their forces
+  // in a loop the compiler vectorises, then the sums.
+  thread_local std::vector<double> dx, dy, dz, r2, theta, e0, e1, e2, rr, pc, pd, pr;
+  thread_local std::vector<std::uint32_t> task_of, partner, within, id_a, id_b, kk, jj;
   std::size_t candidates = 0;
   for (std::size_t t = 0; t < count; ++t) candidates += tasks[t].m_end - tasks[t].m_begin;
   if (dx.size() < candidates) {
-    for (auto* v : {&dx, &dy, &dz, &r2, &theta}) v->resize(2 * candidates);
-    for (auto* v : {&task_of, &partner, &within, &id_a, &id_b}) v->resize(2 * candidates);
+    for (auto* v : {&dx, &dy, &dz, &r2, &theta, &e0, &e1, &e2, &rr, &pc, &pd, &pr}) v->resize(2 * candidates);
+    for (auto* v : {&task_of, &partner, &within, &id_a, &id_b, &kk, &jj}) v->resize(2 * candidates);
   }
   std::size_t c = 0;
   for (std::size_t t = 0; t < count; ++t) {
@@ -70,30 +71,55 @@ void DpdForceField::row_forces(const RowTask* tasks, std::size_t count, std::siz
       partner[c] = static_cast<std::uint32_t>(j);
     }
   }
+  // Compacted, in candidate order: the pairs within the cut-off (their separations overwrite the
+  // candidates' from the front, which the loop has already read).
   std::size_t inside = 0;
   for (std::size_t q = 0; q < candidates; ++q) {
+    const auto k = static_cast<std::uint32_t>(tasks[task_of[q]].k);
     within[inside] = static_cast<std::uint32_t>(q);
-    id_a[inside] = id_[tasks[task_of[q]].k];
+    kk[inside] = k;
+    jj[inside] = partner[q];
+    id_a[inside] = id_[k];
     id_b[inside] = id_[partner[q]];
+    dx[inside] = dx[q], dy[inside] = dy[q], dz[inside] = dz[q], r2[inside] = r2[q];
     inside += r2[q] < rc2 ? 1 : 0;
   }
   // The noise of all pairs within the cut-off in one batch (vectorised: core/pair_noise.hpp).
   noise_.normals(noise_step_, id_a.data(), id_b.data(), inside, theta.data());
+  {
+    // Plain pointers that cannot alias, so that the compiler vectorises the loop (gathers of the
+    // velocities); the arithmetic is the same, lane by lane.
+    const double* __restrict vx = vx_.data();
+    const double* __restrict vy = vy_.data();
+    const double* __restrict vz = vz_.data();
+    const std::uint32_t* __restrict pk = kk.data();
+    const std::uint32_t* __restrict pj = jj.data();
+    const double *__restrict sx = dx.data(), *__restrict sy = dy.data(), *__restrict sz = dz.data(), *__restrict s2 = r2.data();
+    const double* __restrict th = theta.data();
+    double *__restrict out_r = rr.data(), *__restrict out_x = e0.data(), *__restrict out_y = e1.data(), *__restrict out_z = e2.data();
+    double *__restrict out_c = pc.data(), *__restrict out_d = pd.data(), *__restrict out_n = pr.data();
+#pragma omp simd
+    for (std::size_t q = 0; q < inside; ++q) {
+      const std::uint32_t k = pk[q], j = pj[q];
+      const double r = std::sqrt(s2[q]), inv_r = 1.0 / r;
+      const double ex = sx[q] * inv_r, ey = sy[q] * inv_r, ez = sz[q] * inv_r;
+      const double w = 1.0 - r * inv_rc;
+      const double along = ex * (vx[k] - vx[j]) + ey * (vy[k] - vy[j]) + ez * (vz[k] - vz[j]);
+      out_r[q] = r, out_x[q] = ex, out_y[q] = ey, out_z[q] = ez;
+      out_c[q] = a * w;
+      out_d[q] = -gamma * w * w * along;
+      out_n[q] = sigma * w * th[q];
+    }
+  }
   double* force = force_.data();
   for (std::size_t q = 0; q < inside; ++q) {
-    const std::size_t cand = within[q], j = partner[cand];
-    const RowTask& task = tasks[task_of[cand]];
-    const std::size_t k = task.k;
-    const double r = std::sqrt(r2[cand]), inv_r = 1.0 / r;
-    const double ex = dx[cand] * inv_r, ey = dy[cand] * inv_r, ez = dz[cand] * inv_r;
-    const double w = 1.0 - r * inv_rc;
-    const double along = ex * (vx_[k] - vx_[j]) + ey * (vy_[k] - vy_[j]) + ez * (vz_[k] - vz_[j]);
-    const double parts[3] = {a * w, -gamma * w * w * along, sigma * w * theta[q]};
-    const double total = parts[0] + parts[1] + parts[2];
-    const double f[3] = {total * ex, total * ey, total * ez};
+    const std::size_t k = kk[q], j = jj[q];
+    const double total = pc[q] + pd[q] + pr[q];
+    const double f[3] = {total * e0[q], total * e1[q], total * e2[q]};
     if (cross_only) {
       // Into the pair's slot, for the owner of j.
-      double* slot = slot_force_.data() + 3 * (list_.first_pair(k) + task.m_begin) + 3 * (cand - task.first_candidate);
+      const RowTask& task = tasks[task_of[within[q]]];
+      double* slot = slot_force_.data() + 3 * (list_.first_pair(k) + task.m_begin + (within[q] - task.first_candidate));
       slot[0] = f[0], slot[1] = f[1], slot[2] = f[2];
       continue;
     }
@@ -106,9 +132,12 @@ void DpdForceField::row_forces(const RowTask* tasks, std::size_t count, std::siz
       force[3 * j + 2] -= f[2];
     }
     double* sum = partial_.data() + kPerParticle * k;
+    const double w = 1.0 - rr[q] * inv_rc;
     sum[0] += half_energy * w * w;
     // r_kj ⊗ F_kj = f_m r (r̂ ⊗ r̂): xx, yy, zz, xy, xz, yz
+    const double r = rr[q], ex = e0[q], ey = e1[q], ez = e2[q];
     const double qq[6] = {r * ex * ex, r * ey * ey, r * ez * ez, r * ex * ey, r * ex * ez, r * ey * ez};
+    const double parts[3] = {pc[q], pd[q], pr[q]};
     for (int n = 0; n < 3; ++n)
       for (int e = 0; e < 6; ++e) sum[1 + 6 * n + e] += parts[n] * qq[e];
   }
