@@ -131,7 +131,7 @@ void DpdForceField::row_forces(const RowTask* tasks, std::size_t count, std::siz
       force[3 * j + 1] -= f[1];
       force[3 * j + 2] -= f[2];
     }
-    double* sum = partial_.data() + kPerParticle * k;
+    double* sum = partial_.data() + kSums * (k / kRowsPerGroup);  // the group's sums, rows in order
     const double w = 1.0 - rr[q] * inv_rc;
     sum[0] += half_energy * w * w;
     // r_kj ⊗ F_kj = f_m r (r̂ ⊗ r̂): xx, yy, zz, xy, xz, yz
@@ -144,8 +144,8 @@ void DpdForceField::row_forces(const RowTask* tasks, std::size_t count, std::siz
 }
 
 void DpdForceField::rows(std::size_t begin, std::size_t end, std::size_t block_end, bool cross_only, const Box& box) {
-  // Rows go to row_forces in groups, so that the noise of a group is drawn in one batch.
-  constexpr std::size_t kRowsPerGroup = 32;
+  // Rows go to row_forces in groups (aligned to multiples of kRowsPerGroup: blocks start at such
+  // multiples), so that the noise of a group is drawn in one batch.
   std::vector<RowTask> tasks;
   for (std::size_t group = begin; group < end; group += kRowsPerGroup) {
     const std::size_t group_end = std::min(end, group + kRowsPerGroup);
@@ -159,8 +159,8 @@ void DpdForceField::rows(std::size_t begin, std::size_t end, std::size_t block_e
         m_begin = static_cast<std::size_t>(std::lower_bound(row.begin(), row.end(), static_cast<std::int32_t>(block_end)) - row.begin());
         if (m_begin == row.size()) continue;
         std::fill_n(slot_force_.data() + 3 * (list_.first_pair(k) + m_begin), 3 * (row.size() - m_begin), 0.0);  // beyond the cut-off: 0
-      } else {
-        std::fill_n(partial_.data() + kPerParticle * k, kPerParticle, 0.0);
+      } else if (k % kRowsPerGroup == 0) {
+        std::fill_n(partial_.data() + kSums * (k / kRowsPerGroup), kSums, 0.0);
       }
       tasks.push_back({k, m_begin, row.size(), candidates});
       candidates += row.size() - m_begin;
@@ -176,7 +176,8 @@ void DpdForceField::operator()(const State& s, BodyForces& out) {
   gather(p);
   if (slot_force_.size() < 3 * list_.pairs()) slot_force_.resize(3 * list_.pairs());
   force_.assign(3 * n, 0.0);
-  partial_.resize(kPerParticle * n);
+  const std::size_t groups = (n + kRowsPerGroup - 1) / kRowsPerGroup;
+  partial_.resize(kSums * groups);
 
   // Each thread owns a block of positions. Every position's force is the sum, in this order, of
   // the opposites of its pairs from below (ascending) and then its pairs above (ascending), for any
@@ -190,7 +191,10 @@ void DpdForceField::operator()(const State& s, BodyForces& out) {
     blocks = omp_get_num_threads();
     b = omp_get_thread_num();
 #endif
-    const auto block_begin = [&](int k) { return n * static_cast<std::size_t>(k) / static_cast<std::size_t>(blocks); };
+    // Blocks of whole groups of rows, so that a group's sums are one thread's, added in row order.
+    const auto block_begin = [&](int k) {
+      return std::min(n, groups * static_cast<std::size_t>(k) / static_cast<std::size_t>(blocks) * kRowsPerGroup);
+    };
     const std::size_t begin = block_begin(b), end = block_begin(b + 1);
     if (blocks > 1) rows(begin, end, end, true, s.box);
 #pragma omp barrier
@@ -210,9 +214,9 @@ void DpdForceField::operator()(const State& s, BodyForces& out) {
   }
 
   sums_ = DpdSums{};
-  double total[kPerParticle] = {};
-  for (std::size_t k = 0; k < n; ++k)
-    for (int m = 0; m < kPerParticle; ++m) total[m] += partial_[kPerParticle * k + static_cast<std::size_t>(m)];
+  double total[kSums] = {};
+  for (std::size_t g = 0; g < groups; ++g)
+    for (int m = 0; m < kSums; ++m) total[m] += partial_[kSums * g + static_cast<std::size_t>(m)];
   sums_.energy = total[0];
   for (std::size_t m = 0; m < 3; ++m) {
     const double* v = total + 1 + 6 * m;

@@ -28,10 +28,16 @@ CellOrderedPairs::CellOrderedPairs(double cutoff, double skin) : cutoff_(cutoff)
 
 bool CellOrderedPairs::update(const Box& box, const double* x, const double* y, const double* z, std::size_t n) {
   bool stale = built_x_.size() != n || box.edges() != box_.edges();
-  const double limit2 = 0.25 * skin_ * skin_;
-  for (std::size_t i = 0; !stale && i < n; ++i) {
-    const Vec3 d = box.min_image(Vec3(x[i] - built_x_[i], y[i] - built_y_[i], z[i] - built_z_[i]));
-    stale = d.squaredNorm() > limit2;
+  if (!stale) {
+    // Every step looks at every particle: in parallel (a serial loop here was 6% of a two-thread step).
+    const double limit2 = 0.25 * skin_ * skin_;
+    int moved = 0;
+#pragma omp parallel for schedule(static) reduction(| : moved)
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec3 d = box.min_image(Vec3(x[i] - built_x_[i], y[i] - built_y_[i], z[i] - built_z_[i]));
+      moved |= d.squaredNorm() > limit2 ? 1 : 0;
+    }
+    stale = moved != 0;
   }
   if (stale) build(box, x, y, z, n);
   return stale;

@@ -92,8 +92,10 @@ class DpdForceField {
   /// the rows' sums. One compiled body for both, so that a pair's force has the same bits either way.
   [[gnu::noinline]] void row_forces(const RowTask* tasks, std::size_t count, std::size_t block_end, bool cross_only, const Box& box);
 
-  /// Per-position sums over the position's pairs above it: energy, then 3 parts × 6 virial elements.
-  static constexpr int kPerParticle = 19;
+  /// Rows evaluated together (one batch of noise) and summed together.
+  static constexpr std::size_t kRowsPerGroup = 32;
+  /// Per-group sums over the group's pairs: energy, then 3 parts × 6 virial elements.
+  static constexpr int kSums = 19;
 
   DpdParameters p_;
   double noise_amplitude_;  // √(2γkT/Δt)
@@ -105,7 +107,7 @@ class DpdForceField {
   std::vector<std::uint32_t> id_;
   std::vector<double> slot_force_;  // 3 per listed pair: the force on the lower position (pairs across blocks only)
   std::vector<double> force_;       // 3 per position
-  std::vector<double> partial_;     // kPerParticle per position
+  std::vector<double> partial_;     // kSums per group of kRowsPerGroup positions
   DpdSums sums_;
 };
 
