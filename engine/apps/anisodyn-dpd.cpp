@@ -31,8 +31,8 @@ tool::Description description() {
   d.cost = {{"kind", "model"},
             {"work", "particle-steps"},
             {"amount", {"particles", {{"rule", "time_steps"}}}},
-            {"rate", 1.4e6},
-            {"measured", "bench/dpd_throughput.cpp, 2026-11-25: 24000 particles at rho = 3, gamma = 4.5, one core, median of 3 (docs/performance.md)"},
+            {"rate", 3.7e6},
+            {"measured", "bench/peers/dpd_side_by_side.sh, 2026-11-25: 24000 particles at rho = 3, gamma = 4.5, one core, median of 3 (docs/performance.md)"},
             {"note", "pure liquid"}};
   return d;
 }

@@ -58,6 +58,9 @@ BAD = [  # (what, plot, the path the message must name)
     ("x_scale 0", dict(GOOD_PLOT, x_scale=0), "report.plots[0].x_scale"),
     ("x_scale on a grid of texts", dict(GOOD_PLOT, x="label"), "report.plots[0].x_scale"),
     ("x_scale on a table plot", {"stage": "pairs", "table": "t", "y": ["P"], "x_scale": 2}, "report.plots[0].x_scale"),
+    ("x_power 0", dict(GOOD_PLOT, x_power=0), "report.plots[0].x_power"),
+    ("x_power on a grid of texts", dict({k: v for k, v in GOOD_PLOT.items() if k != "x_scale"}, x="label", x_power=2),
+     "report.plots[0].x_power"),
     ("a stage beside a series list", dict(GOOD_PLOT, stage="pairs"), "report.plots[0].stage"),
     ("a scalar beside a series list", dict(GOOD_PLOT, scalar="D"), "report.plots[0]"),
     ("an empty series list", dict(GOOD_PLOT, series=[]), "report.plots[0].series"),
@@ -142,6 +145,10 @@ ax = draw({"name": "q", "stage": "pairs", "scalar": "D", "x": "N", "x_scale": 0.
 lines = labelled(ax)
 check(set(lines) == {"hardness = 1.0", "hardness = 2.0"} and np.allclose(lines["hardness = 2.0"].get_xdata(), [0.09, 0.44, 1.76]) and
       np.allclose(lines["hardness = 2.0"].get_ydata(), [d_value(n, 2.0) for n in NS]), "the single-scalar form scales x too")
+
+ax = draw({"name": "r", "stage": "pairs", "scalar": "D", "x": "N", "x_power": -1, "select": {"hardness": 1.0}})
+lines = labelled(ax)
+check("D" in lines and np.allclose(sorted(lines["D"].get_xdata()), sorted(1 / n for n in NS)), "x_power -1 draws against 1/N")
 
 ax = draw(dict(GOOD_PLOT, select={"hardness": 2.0}, series=[{"stage": "pairs", "scalar": "D", "label": "2k"},
                                                              {"stage": "pairs", "scalar": "D", "select": {"hardness": 1.0}, "label": "k"}]))

@@ -359,16 +359,16 @@ def validate_report(m):
                     if (axis == "x" or axis in item) and (not isinstance(value, str) or value not in grid):
                         raise ManifestError(f"{p}.{axis}", "a grid variable (" + (", ".join(grid) or "the manifest has none") + ")",
                                             value)
-                for key, meaning in (("x_scale", "the grid value times it"), ("x_power", "(the grid value times x_scale) to this power")):
-                    if key not in item:
+                for axis_key, meaning in (("x_scale", "the grid value times it"), ("x_power", "(the grid value times x_scale) to this power")):
+                    if axis_key not in item:
                         continue
-                    value = item[key]
+                    value = item[axis_key]
                     if not is_number(value) or value == 0 or not math.isfinite(value):
-                        raise ManifestError(f"{p}.{key}", f"a non-zero number (the x coordinate is {meaning})", value)
+                        raise ManifestError(f"{p}.{axis_key}", f"a non-zero number (the x coordinate is {meaning})", value)
                     if not all(is_number(v) for v in grid[item["x"]]):
-                        raise ManifestError(f"{p}.{key}", f"no '{key}': it has no effect, the values of grid.{item['x']} are not "
+                        raise ManifestError(f"{p}.{axis_key}", f"no '{axis_key}': it has no effect, the values of grid.{item['x']} are not "
                                                           "all numbers (they are drawn at their positions in the list)")
-                    if key == "x_power" and value < 0 and any(v == 0 for v in grid[item["x"]]):
+                    if axis_key == "x_power" and value < 0 and any(v == 0 for v in grid[item["x"]]):
                         raise ManifestError(f"{p}.x_power", f"a positive power: grid.{item['x']} holds 0", value)
             if not isinstance(item.get("log", ""), str) or set(item.get("log", "")) - set("xy"):
                 raise ManifestError(f"{p}.log", "'x', 'y', 'xy' or ''", item.get("log"))
