@@ -191,9 +191,18 @@ void DpdForceField::operator()(const State& s, BodyForces& out) {
     blocks = omp_get_num_threads();
     b = omp_get_thread_num();
 #endif
-    // Blocks of whole groups of rows, so that a group's sums are one thread's, added in row order.
+    // Blocks of whole groups of rows, so that a group's sums are one thread's, added in row order;
+    // about the same number of pairs in each (the first rows have more pairs above them than the
+    // last: their neighbour cells across the periodic boundary are numbered above them).
     const auto block_begin = [&](int k) {
-      return std::min(n, groups * static_cast<std::size_t>(k) / static_cast<std::size_t>(blocks) * kRowsPerGroup);
+      const std::size_t target = list_.pairs() * static_cast<std::size_t>(k) / static_cast<std::size_t>(blocks);
+      std::size_t lo = 0, hi = groups;  // the first group whose first row starts at or after target
+      while (lo < hi) {
+        const std::size_t mid = (lo + hi) / 2;
+        if (list_.first_pair(mid * kRowsPerGroup) < target) lo = mid + 1;
+        else hi = mid;
+      }
+      return k == blocks ? n : std::min(n, lo * kRowsPerGroup);
     };
     const std::size_t begin = block_begin(b), end = block_begin(b + 1);
     if (blocks > 1) rows(begin, end, end, true, s.box);
@@ -208,9 +217,16 @@ void DpdForceField::operator()(const State& s, BodyForces& out) {
         force_[3 * k + 2] -= f[2];
       }
     rows(begin, end, end, false, s.box);
-    const std::int32_t* order = list_.order().data();
-    for (std::size_t k = begin; k < end; ++k)
-      out.force[static_cast<std::size_t>(order[k])] += Vec3(force_[3 * k], force_[3 * k + 1], force_[3 * k + 2]);
+    // Each thread writes the forces of the particles it will kick (the integrator's static split of
+    // the particle indices), not those of its positions, which are all over the arrays: written by
+    // one core and read by the other, each cache line would cross between them.
+#pragma omp barrier
+    const std::int32_t* position = list_.position_of().data();
+#pragma omp for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto k = static_cast<std::size_t>(position[i]);
+      out.force[i] += Vec3(force_[3 * k], force_[3 * k + 1], force_[3 * k + 2]);
+    }
   }
 
   sums_ = DpdSums{};

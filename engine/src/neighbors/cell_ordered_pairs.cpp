@@ -116,6 +116,7 @@ void CellOrderedPairs::sort_into_cells(const Box& box, const double* x, const do
   for (int c = 0; c < ncells; ++c) cell_start_[static_cast<std::size_t>(c) + 1] += cell_start_[static_cast<std::size_t>(c)];
   std::vector<std::int32_t> next(cell_start_.begin(), cell_start_.end() - 1);
   order_.resize(n);
+  position_of_.resize(n);
   cell_of_.resize(n);
   sx_.resize(n);
   sy_.resize(n);
@@ -123,6 +124,7 @@ void CellOrderedPairs::sort_into_cells(const Box& box, const double* x, const do
   for (std::size_t i = 0; i < n; ++i) {
     const auto k = static_cast<std::size_t>(next[static_cast<std::size_t>(cell[i])]++);
     order_[k] = static_cast<std::int32_t>(i);
+    position_of_[i] = static_cast<std::int32_t>(k);
     cell_of_[k] = cell[i];
     sx_[k] = wx[i];
     sy_[k] = wy[i];

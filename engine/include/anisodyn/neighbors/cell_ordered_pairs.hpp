@@ -44,6 +44,8 @@ class CellOrderedPairs {
   std::size_t size() const { return order_.size(); }
   /// order()[k]: the particle at sorted position k.
   std::span<const std::int32_t> order() const { return order_; }
+  /// position_of()[i]: the sorted position of particle i (the inverse of order()).
+  std::span<const std::int32_t> position_of() const { return position_of_; }
   /// Partners of position k above k, ascending.
   std::span<const std::int32_t> partners_above(std::size_t k) const {
     return {partners_.data() + first_pair_[k], partners_.data() + first_pair_[k + 1]};
@@ -70,7 +72,7 @@ class CellOrderedPairs {
   Int3 cells_ = Int3(0, 0, 0);
   std::vector<double> built_x_, built_y_, built_z_;   // particle order, as given (unwrapped)
   std::vector<double> sx_, sy_, sz_;                  // sorted order, wrapped into the box
-  std::vector<std::int32_t> order_, cell_of_;         // cell_of_[k]: cell of position k
+  std::vector<std::int32_t> order_, position_of_, cell_of_;  // cell_of_[k]: cell of position k
   std::vector<std::int32_t> cell_start_;              // [cells + 1]
   std::vector<std::vector<std::int32_t>> upper_cells_;  // per cell: the distinct neighbour cells numbered above it, ascending
   std::vector<std::size_t> first_pair_;               // [n + 1]
