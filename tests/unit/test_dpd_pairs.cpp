@@ -199,3 +199,44 @@ TEST(DpdPairs, TheThreadCountDoesNotChangeABit) {
     for (std::size_t k = 0; k < 3; ++k) EXPECT_TRUE(sums[t].virial[k] == sums[0].virial[k]);
   }
 }
+
+TEST(DpdPairs, OnlyTheListedLiquidParticlesTakeDpdForces) {
+  // The liquid of a state with other particles among it (colloids-to-be, here at random places):
+  // the liquid's forces, energy and virial are those of the liquid alone, bit for bit, and the
+  // others get nothing.
+  const State alone_state = liquid(648, 6.0, 21);
+  State mixed = alone_state;
+  mixed.species.push_back(Species{"colloid", Shape::sphere(2.0), 4.2, {}, {}});
+  const Particles& p = alone_state.particles;
+  Rng rng(4, 0);
+  std::vector<std::int32_t> liquid_indices;
+  // Interleave: a colloid before every 100th liquid particle.
+  Particles merged;
+  merged.carry_velocities();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (i % 100 == 0) {
+      merged.add(1, Vec3(rng.uniform(0, 6), rng.uniform(0, 6), rng.uniform(0, 6)), Quat::Identity(), static_cast<std::int64_t>(100000 + i));
+      merged.set_velocity(merged.size() - 1, Vec3(1, 2, 3));
+    }
+    liquid_indices.push_back(static_cast<std::int32_t>(merged.size()));
+    merged.add(0, p.position(i), Quat::Identity(), p.id[i]);
+    merged.set_velocity(merged.size() - 1, p.velocity(i));
+  }
+  mixed.particles = merged;
+  auto alone = field(3);
+  const BodyForces expected = evaluate(alone, alone_state);
+  auto subset = field(3);
+  subset.set_liquid(liquid_indices);
+  const BodyForces got = evaluate(subset, mixed);
+  std::size_t u = 0;
+  for (std::size_t i = 0; i < mixed.particles.size(); ++i) {
+    if (u < liquid_indices.size() && static_cast<std::size_t>(liquid_indices[u]) == i) {
+      ASSERT_TRUE(got.force[i] == expected.force[u]) << "liquid particle " << u;
+      ++u;
+    } else {
+      ASSERT_TRUE(got.force[i] == Vec3::Zero()) << "colloid at " << i;
+    }
+  }
+  EXPECT_EQ(subset.last_sums().energy, alone.last_sums().energy);
+  for (std::size_t k = 0; k < 3; ++k) EXPECT_TRUE(subset.last_sums().virial[k] == alone.last_sums().virial[k]);
+}

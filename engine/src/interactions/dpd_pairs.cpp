@@ -15,8 +15,12 @@ DpdForceField::DpdForceField(DpdParameters params, double time_step, std::uint64
       noise_(seed, kDpdPairNoise),
       list_(params.cutoff, skin) {}
 
-void DpdForceField::gather(const Particles& p) {
-  const std::size_t n = p.size();
+void DpdForceField::set_liquid(std::vector<std::int32_t> indices) {
+  liquid_ = std::move(indices);
+  list_.invalidate();
+}
+
+void DpdForceField::gather(const Particles& p, std::size_t n) {
   x_.resize(n);
   y_.resize(n);
   z_.resize(n);
@@ -27,7 +31,7 @@ void DpdForceField::gather(const Particles& p) {
   const std::int32_t* order = list_.order().data();
 #pragma omp parallel for schedule(static)
   for (std::size_t k = 0; k < n; ++k) {
-    const auto i = static_cast<std::size_t>(order[k]);
+    const std::size_t i = particle(static_cast<std::size_t>(order[k]));
     x_[k] = p.x[i];
     y_[k] = p.y[i];
     z_[k] = p.z[i];
@@ -36,6 +40,25 @@ void DpdForceField::gather(const Particles& p) {
     vz_[k] = p.vz[i];
     id_[k] = static_cast<std::uint32_t>(p.id[i]);  // below 2³² (checked by the engine)
   }
+}
+
+void DpdForceField::update_list(const State& s, std::size_t n) {
+  const Particles& p = s.particles;
+  if (liquid_.empty()) {
+    list_.update(s.box, p.x.data(), p.y.data(), p.z.data(), n);
+    return;
+  }
+  lx_.resize(n);
+  ly_.resize(n);
+  lz_.resize(n);
+#pragma omp parallel for schedule(static)
+  for (std::size_t u = 0; u < n; ++u) {
+    const std::size_t i = particle(u);
+    lx_[u] = p.x[i];
+    ly_[u] = p.y[i];
+    lz_[u] = p.z[i];
+  }
+  list_.update(s.box, lx_.data(), ly_.data(), lz_.data(), n);
 }
 
 void DpdForceField::row_forces(const RowTask* tasks, std::size_t count, std::size_t block_end, bool cross_only, const Box& box) {
@@ -171,9 +194,9 @@ void DpdForceField::rows(std::size_t begin, std::size_t end, std::size_t block_e
 
 void DpdForceField::operator()(const State& s, BodyForces& out) {
   const Particles& p = s.particles;
-  const std::size_t n = p.size();
-  list_.update(s.box, p.x.data(), p.y.data(), p.z.data(), n);
-  gather(p);
+  const std::size_t n = liquid_.empty() ? p.size() : liquid_.size();  // liquid particles
+  update_list(s, n);
+  gather(p, n);
   if (slot_force_.size() < 3 * list_.pairs()) slot_force_.resize(3 * list_.pairs());
   force_.assign(3 * n, 0.0);
   const std::size_t groups = (n + kRowsPerGroup - 1) / kRowsPerGroup;
@@ -223,9 +246,9 @@ void DpdForceField::operator()(const State& s, BodyForces& out) {
 #pragma omp barrier
     const std::int32_t* position = list_.position_of().data();
 #pragma omp for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      const auto k = static_cast<std::size_t>(position[i]);
-      out.force[i] += Vec3(force_[3 * k], force_[3 * k + 1], force_[3 * k + 2]);
+    for (std::size_t u = 0; u < n; ++u) {
+      const auto k = static_cast<std::size_t>(position[u]);
+      out.force[particle(u)] += Vec3(force_[3 * k], force_[3 * k + 1], force_[3 * k + 2]);
     }
   }
 

@@ -61,8 +61,12 @@ struct DpdSums {
 
 class DpdForceField {
  public:
-  /// Every particle is liquid; seed keys the pair noise.
+  /// Every particle is liquid unless set_liquid() says which are; seed keys the pair noise.
   DpdForceField(DpdParameters params, double time_step, std::uint64_t seed, double skin);
+
+  /// The liquid particles (indices into the state, ascending); the others (colloids) get no DPD
+  /// force. Empty: every particle.
+  void set_liquid(std::vector<std::int32_t> indices);
 
   /// Adds the DPD forces of state s into out (forces, energy, virial summed over the parts).
   void operator()(const State& s, BodyForces& out);
@@ -77,8 +81,12 @@ class DpdForceField {
   const DpdParameters& parameters() const { return p_; }
 
  private:
-  /// Copies the particles into the arrays of the list's order.
-  void gather(const Particles& p);
+  /// The state index of liquid particle u.
+  std::size_t particle(std::size_t u) const { return liquid_.empty() ? u : static_cast<std::size_t>(liquid_[u]); }
+  /// The pair list of the n liquid particles' positions, rebuilt when stale.
+  void update_list(const State& s, std::size_t n);
+  /// Copies the n liquid particles into the arrays of the list's order.
+  void gather(const Particles& p, std::size_t n);
   /// The pairs of rows [begin, end), a block ending at block_end: with cross_only, only those
   /// reaching past block_end, into their slots; otherwise all of them, into force_ (both positions
   /// when both are below block_end) and the rows' sums.
@@ -101,6 +109,8 @@ class DpdForceField {
   double noise_amplitude_;  // √(2γkT/Δt)
   PairNoise noise_;
   CellOrderedPairs list_;
+  std::vector<std::int32_t> liquid_;        // empty: every particle
+  std::vector<double> lx_, ly_, lz_;        // the liquid's positions, for the list (when a subset)
   std::uint64_t noise_step_ = 0;
   // Per position of the list's order: positions, velocities, ids.
   std::vector<double> x_, y_, z_, vx_, vy_, vz_;

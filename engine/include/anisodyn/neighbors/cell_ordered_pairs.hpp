@@ -36,6 +36,8 @@ class CellOrderedPairs {
   /// Rebuilds when stale (see above) from the positions (x, y, z of n particles). Returns whether it
   /// rebuilt. The box must be at least 2 (cutoff + skin) along every edge (minimum image).
   bool update(const Box& box, const double* x, const double* y, const double* z, std::size_t n);
+  /// The next update() rebuilds (the particles it lists changed).
+  void invalidate() { built_x_.clear(); }
   /// Builds from positions given as x0, y0, z0, x1, … (a checkpoint's built_positions()).
   void rebuild_at(const Box& box, const std::vector<double>& positions);
   /// The positions of the last build, x0, y0, z0, x1, … (in particle order).
