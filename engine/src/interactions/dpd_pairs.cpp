@@ -142,7 +142,7 @@ void DpdForceField::row_forces(const RowTask* tasks, std::size_t count, std::siz
     if (cross_only) {
       // Into the pair's slot, for the owner of j.
       const RowTask& task = tasks[task_of[within[q]]];
-      double* slot = slot_force_.data() + 3 * (list_.first_pair(k) + task.m_begin + (within[q] - task.first_candidate));
+      double* slot = slot_force_.get() + 3 * (list_.first_pair(k) + task.m_begin + (within[q] - task.first_candidate));
       slot[0] = f[0], slot[1] = f[1], slot[2] = f[2];
       continue;
     }
@@ -181,7 +181,7 @@ void DpdForceField::rows(std::size_t begin, std::size_t end, std::size_t block_e
         // Pairs across the block (partner at or beyond block_end) are the row's tail: partners ascend.
         m_begin = static_cast<std::size_t>(std::lower_bound(row.begin(), row.end(), static_cast<std::int32_t>(block_end)) - row.begin());
         if (m_begin == row.size()) continue;
-        std::fill_n(slot_force_.data() + 3 * (list_.first_pair(k) + m_begin), 3 * (row.size() - m_begin), 0.0);  // beyond the cut-off: 0
+        std::fill_n(slot_force_.get() + 3 * (list_.first_pair(k) + m_begin), 3 * (row.size() - m_begin), 0.0);  // beyond the cut-off: 0
       } else if (k % kRowsPerGroup == 0) {
         std::fill_n(partial_.data() + kSums * (k / kRowsPerGroup), kSums, 0.0);
       }
@@ -197,7 +197,12 @@ void DpdForceField::operator()(const State& s, BodyForces& out) {
   const std::size_t n = liquid_.empty() ? p.size() : liquid_.size();  // liquid particles
   update_list(s, n);
   gather(p, n);
-  if (slot_force_.size() < 3 * list_.pairs()) slot_force_.resize(3 * list_.pairs());
+  // Uninitialised: only the slots of pairs across blocks are ever written, near the blocks' ends,
+  // so the rest of the array never becomes resident memory.
+  if (slot_capacity_ < 3 * list_.pairs()) {
+    slot_capacity_ = 3 * list_.pairs() + 3 * list_.pairs() / 8;
+    slot_force_ = std::make_unique_for_overwrite<double[]>(slot_capacity_);
+  }
   force_.assign(3 * n, 0.0);
   const std::size_t groups = (n + kRowsPerGroup - 1) / kRowsPerGroup;
   partial_.resize(kSums * groups);
@@ -234,7 +239,7 @@ void DpdForceField::operator()(const State& s, BodyForces& out) {
     for (std::size_t k = begin; k < end; ++k)
       for (const std::int32_t slot : list_.lower_pairs(k)) {
         if (static_cast<std::size_t>(slot) >= own_slots) break;
-        const double* f = slot_force_.data() + 3 * static_cast<std::size_t>(slot);
+        const double* f = slot_force_.get() + 3 * static_cast<std::size_t>(slot);
         force_[3 * k] -= f[0];
         force_[3 * k + 1] -= f[1];
         force_[3 * k + 2] -= f[2];

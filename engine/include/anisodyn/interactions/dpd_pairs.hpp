@@ -32,6 +32,7 @@
 // half-step ones, which is LAMMPS's scheme and Groot–Warren's with λ = ½ (docs/dpd.md).
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "anisodyn/core/pair_noise.hpp"
@@ -115,7 +116,8 @@ class DpdForceField {
   // Per position of the list's order: positions, velocities, ids.
   std::vector<double> x_, y_, z_, vx_, vy_, vz_;
   std::vector<std::uint32_t> id_;
-  std::vector<double> slot_force_;  // 3 per listed pair: the force on the lower position (pairs across blocks only)
+  std::unique_ptr<double[]> slot_force_;  // 3 per listed pair: the force on the lower position (pairs across blocks only)
+  std::size_t slot_capacity_ = 0;
   std::vector<double> force_;       // 3 per position
   std::vector<double> partial_;     // kSums per group of kRowsPerGroup positions
   DpdSums sums_;
