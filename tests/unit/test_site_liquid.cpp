@@ -132,7 +132,9 @@ TEST(SiteLiquid, ShellNoiseHasTheFluctuationDissipationVariance) {
       const Vec3 noise(f[0], f[1] - friction_y, f[2]);
       sum += noise;
       sum2 += noise.cwiseProduct(noise);
-      if (mode == SiteLiquidParameters::ShellNoise::AlongV) ASSERT_NEAR(noise.x(), 0.0, 1e-12);  // v_is is along y
+      if (mode == SiteLiquidParameters::ShellNoise::AlongV) {
+        ASSERT_NEAR(noise.x(), 0.0, 1e-12);  // v_is is along y
+      }
     }
     const Vec3 var = sum2 / n - (sum / n).cwiseProduct(sum / n);
     const double se = target * std::sqrt(2.0 / n);  // of a Gaussian variance estimate

@@ -169,7 +169,7 @@ void DpdForceField::row_forces(const RowTask* tasks, std::size_t count, std::siz
 void DpdForceField::rows(std::size_t begin, std::size_t end, std::size_t block_end, bool cross_only, const Box& box) {
   // Rows go to row_forces in groups (aligned to multiples of kRowsPerGroup: blocks start at such
   // multiples), so that the noise of a group is drawn in one batch.
-  std::vector<RowTask> tasks;
+  thread_local std::vector<RowTask> tasks;  // this thread's, kept between calls
   for (std::size_t group = begin; group < end; group += kRowsPerGroup) {
     const std::size_t group_end = std::min(end, group + kRowsPerGroup);
     tasks.clear();

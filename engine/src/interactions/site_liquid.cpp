@@ -27,7 +27,8 @@ void SiteLiquidForces::add(const Box& box, std::span<const SiteView> sites, cons
   const std::size_t n = liquid.n, ns = sites.size();
   const std::size_t chunks = (n + kChunk - 1) / kChunk;
   // Per chunk: the force on each site, then the sums.
-  std::vector<double> partial(chunks * (3 * ns + kPerChunk), 0.0);
+  std::vector<double>& partial = partial_;  // kept between steps: no allocation per step
+  partial.assign(chunks * (3 * ns + kPerChunk), 0.0);
   const double noise_scale = std::sqrt(2.0 * p_.kT / time_step_);
   const bool noisy = p_.kT > 0.0 && p_.gamma_surface > 0.0;
 #pragma omp parallel for schedule(dynamic, 1)

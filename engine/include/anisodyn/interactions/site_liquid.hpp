@@ -94,6 +94,7 @@ class SiteLiquidForces {
   KeyedRandom noise_;
   std::uint64_t noise_step_ = 0;
   SiteLiquidSums sums_;
+  std::vector<double> partial_;  // per chunk of liquid: the force on each site, then the sums
 };
 
 }  // namespace anisodyn
