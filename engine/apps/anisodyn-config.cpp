@@ -27,7 +27,11 @@ tool::Description description() {
       tool::required("composition", "array", "particles to place: {species, count, orientation {mode, axis, director, random_azimuth}}"),
       tool::optional("box", "object", nullptr,
                      "{edges} or {packing_fraction, aspect}; required unless inserting into --input (whose box is kept)"),
-      tool::optional("placement", "string", "lattice", "lattice | random (random when inserting into --input)"),
+      tool::optional("placement", "string", "lattice",
+                     "lattice | random | uniform | colloids_in_liquid (random when inserting into --input)"),
+      tool::optional("liquid", "object", nullptr,
+                     "colloids_in_liquid: {species, density (3), subtract_colloid_volume (true)}, the DPD liquid placed "
+                     "uniformly around the composition's colloids"),
       tool::optional("max_attempts_per_particle", "integer", 10000, "bound on the attempts per particle of random placement"),
   };
   d.cost = tool::negligible_cost("a configuration takes well under a second to seconds");
@@ -50,13 +54,15 @@ int main(int argc, char** argv) {
 
     const std::uint64_t replica = opt.replica.value_or(0);
     nlohmann::json diffusion_origins;
-    State state = build_configuration(cfg, existing, seed, replica, &diffusion_origins);
+    nlohmann::json liquid_record;
+    State state = build_configuration(cfg, existing, seed, replica, &diffusion_origins, &liquid_record);
 
     nlohmann::json parameters = opt.config;
     parameters["seed"] = seed;
     if (replica) parameters["replica"] = replica;
     nlohmann::json provenance = tool::make_provenance(info.name, opt.argv, opt.inputs);
     provenance["diffusion_sources"] = diffusion_origins;  // which species file (and entry) each D came from
+    if (!liquid_record.is_null()) provenance["liquid_fill"] = liquid_record;
     io::H5mdWriter writer(opt.output, {"anisodyn", "", "anisodyn user", parameters, provenance, state.species});
     writer.append_frame(state);
     writer.commit();

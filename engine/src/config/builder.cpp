@@ -130,4 +130,40 @@ void insert_randomly(State& state, const PlacementRequest& req, Rng& rng) {
   }
 }
 
+bool inside_body(const State& state, std::size_t i, const Vec3& r) {
+  const Particles& p = state.particles;
+  const Shape& shape = state.species[static_cast<std::size_t>(p.species[i])].shape;
+  const Vec3 d = state.box.min_image(r - p.position(i));
+  switch (shape.kind) {
+    case ShapeKind::Sphere: return d.norm() < 0.5 * shape.diameter;
+    case ShapeKind::Spherocylinder: {
+      // Distance from the axis segment (body z, ±length/2) below the radius.
+      const Vec3 axis = p.orientation(i) * Vec3::UnitZ();
+      const double along = std::clamp(d.dot(axis), -0.5 * shape.length, 0.5 * shape.length);
+      return (d - along * axis).norm() < 0.5 * shape.diameter;
+    }
+    default:
+      throw InputError(std::string("a liquid can be placed around spheres and spherocylinders, not a ") + shape_kind_name(shape.kind));
+  }
+}
+
+void fill_liquid(State& state, int liquid, std::size_t count, Rng& rng, std::size_t max_attempts) {
+  const std::size_t bodies = state.particles.size();
+  std::int64_t id = next_id(state);
+  const Vec3& L = state.box.edges();
+  for (std::size_t k = 0; k < count; ++k) {
+    std::size_t attempt = 0;
+    for (;; ++attempt) {
+      if (attempt == max_attempts)
+        throw PlacementFailure("no room for liquid particle " + std::to_string(k) + " after " + std::to_string(max_attempts) + " draws");
+      const Vec3 r(rng.uniform() * L.x(), rng.uniform() * L.y(), rng.uniform() * L.z());
+      bool free = true;
+      for (std::size_t i = 0; i < bodies && free; ++i) free = !inside_body(state, i, r);
+      if (!free) continue;
+      state.particles.add(liquid, r, Quat::Identity(), id++);
+      break;
+    }
+  }
+}
+
 }  // namespace anisodyn

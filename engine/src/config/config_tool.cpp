@@ -11,13 +11,15 @@ namespace anisodyn {
 
 namespace {
 
-OrientationRule parse_orientation(std::optional<tool::ConfigNode> node, const Shape& shape) {
+OrientationRule parse_orientation(std::optional<tool::ConfigNode> node, const Shape& shape, OrientationRule::Mode fallback) {
   OrientationRule rule;
+  rule.mode = fallback;
   rule.body_axis = default_alignment_axis(shape);
   if (!node) return rule;
   if (!shape.is_anisotropic()) node->fail("", "no orientation for a sphere (it has none: the block has no effect)");
-  rule.mode = node->choice("mode", {"aligned", "random"}, "aligned") == "aligned" ? OrientationRule::Mode::Aligned
-                                                                                   : OrientationRule::Mode::Random;
+  const std::string fallback_name = fallback == OrientationRule::Mode::Aligned ? "aligned" : "random";
+  rule.mode = node->choice("mode", {"aligned", "random"}, fallback_name) == "aligned" ? OrientationRule::Mode::Aligned
+                                                                                      : OrientationRule::Mode::Random;
   for (const char* key : {"axis", "director", "random_azimuth"})
     node->reject_unless(rule.mode == OrientationRule::Mode::Aligned, key, "with random orientations (it shapes an aligned start)");
   const int axis = io::choose_body_axis(*node, "axis", "auto", false, {"auto"});
@@ -50,10 +52,73 @@ std::map<std::string, int> merge_species(SpeciesTable& table, tool::ConfigNode& 
   return index;
 }
 
+/// The liquid of placement "colloids_in_liquid" (spec 30 §5).
+struct LiquidFill {
+  int species = -1;
+  double density = 3.0;
+  bool subtract_colloid_volume = true;
+};
+
+LiquidFill parse_liquid_fill(tool::ConfigNode& cfg, const std::map<std::string, int>& index, const PlacementRequest& req) {
+  auto node = cfg.object("liquid");
+  LiquidFill fill;
+  const std::string name = node.string("species");
+  auto it = index.find(name);
+  if (it == index.end()) node.fail("species", "expected the name of a species in the table");
+  fill.species = it->second;
+  if (req.counts[static_cast<std::size_t>(fill.species)] > 0)
+    node.fail("species", "expected a species that is not in the composition (the composition places the colloids)");
+  fill.density = node.positive("density", fill.density);
+  fill.subtract_colloid_volume = node.boolean("subtract_colloid_volume", fill.subtract_colloid_volume);
+  return fill;
+}
+
+/// N = round(ρ (V_box − Σ V_colloid)) liquid particles (or ρ V_box without the subtraction) outside
+/// the colloids; the counts go to `record`.
+void add_liquid(State& state, const LiquidFill& fill, Rng& rng, tool::ConfigNode& cfg, nlohmann::json* record) {
+  double excluded = 0.0;
+  for (std::size_t i = 0; i < state.particles.size(); ++i) {
+    const Shape& shape = state.species[static_cast<std::size_t>(state.particles.species[i])].shape;
+    if (shape.kind != ShapeKind::Sphere && shape.kind != ShapeKind::Spherocylinder)
+      cfg.fail("composition", std::string("expected sphere or spherocylinder colloids around which to place a liquid, not a ") +
+                                  shape_kind_name(shape.kind));
+    excluded += shape.volume();
+  }
+  const double volume = state.box.volume() - (fill.subtract_colloid_volume ? excluded : 0.0);
+  if (!(volume > 0.0)) cfg.fail("box", "expected a box larger than the colloids");
+  const auto count = static_cast<std::size_t>(std::llround(fill.density * volume));
+  const std::size_t colloids = state.particles.size();
+  try {
+    fill_liquid(state, fill.species, count, rng);
+  } catch (const PlacementFailure& e) {
+    cfg.fail("liquid", std::string("the liquid does not fit: ") + e.what());
+  }
+  if (record)
+    *record = {{"liquid_particles", count}, {"colloids", colloids}, {"density", fill.density},
+               {"colloid_volume", excluded}, {"subtract_colloid_volume", fill.subtract_colloid_volume},
+               {"rule", "N = round(density (V_box - colloid volume)); positions uniform outside the colloid bodies"}};
+}
+
+/// The colloids: a single one at the box centre, several by random insertion without overlaps.
+void place_colloids(State& state, const PlacementRequest& req, Rng& rng) {
+  std::size_t total = 0;
+  for (const std::size_t n : req.counts) total += n;
+  if (total != 1) {
+    insert_randomly(state, req, rng);
+    return;
+  }
+  for (std::size_t s = 0; s < req.counts.size(); ++s)
+    if (req.counts[s] == 1) {
+      PlacementRequest one = req;
+      place_uniformly(state, one, rng);  // draws the orientation by the species' rule …
+      state.particles.set_position(state.particles.size() - 1, 0.5 * state.box.edges());  // … and the centre replaces the position
+    }
+}
+
 }  // namespace
 
 State build_configuration(tool::ConfigNode& cfg, const std::optional<State>& existing, std::uint64_t seed, std::uint64_t replica,
-                          nlohmann::json* diffusion_origins) {
+                          nlohmann::json* diffusion_origins, nlohmann::json* liquid_record) {
   State state;
   if (existing) state = *existing;
   if (!existing && !cfg.has("species")) cfg.fail("species", "expected the species table (an array of species)");
@@ -66,15 +131,24 @@ State build_configuration(tool::ConfigNode& cfg, const std::optional<State>& exi
   req.rules.resize(state.species.size());
   auto entries = cfg.objects("composition");
   if (entries.empty()) cfg.fail("composition", "expected at least one {\"species\": name, \"count\": n} entry");
+  std::vector<std::pair<std::size_t, std::optional<tool::ConfigNode>>> orientation_nodes;
   for (auto& e : entries) {
     const std::string name = e.string("species");
     auto it = index.find(name);
     if (it == index.end()) e.fail("species", "expected the name of a species in the table");
     const std::size_t s = static_cast<std::size_t>(it->second);
     req.counts[s] += static_cast<std::size_t>(e.positive_integer("count"));
-    req.rules[s] = parse_orientation(e.optional_object("orientation"), state.species[s].shape);
+    orientation_nodes.emplace_back(s, e.optional_object("orientation"));
   }
-  const std::string placement = cfg.choice("placement", {"lattice", "random", "uniform"}, existing ? "random" : "lattice");
+  const std::string placement =
+      cfg.choice("placement", {"lattice", "random", "uniform", "colloids_in_liquid"}, existing ? "random" : "lattice");
+  const bool liquid_fill = placement == "colloids_in_liquid";
+  // Colloids in a liquid start with random orientations (spec 30 §5); other placements, aligned.
+  for (auto& [s, node] : orientation_nodes)
+    req.rules[s] = parse_orientation(node, state.species[s].shape, liquid_fill ? OrientationRule::Mode::Random : OrientationRule::Mode::Aligned);
+  cfg.reject_unless(liquid_fill, "liquid", "without placement \"colloids_in_liquid\" (it is the liquid placed around the colloids)");
+  std::optional<LiquidFill> fill;
+  if (liquid_fill) fill = parse_liquid_fill(cfg, index, req);
   cfg.reject_unless(placement == "random", "max_attempts_per_particle", "with " + placement + " placement (it bounds random insertion)");
   req.max_attempts_per_particle = static_cast<std::size_t>(cfg.positive_integer("max_attempts_per_particle", 10000));
   if (existing) {
@@ -94,8 +168,10 @@ State build_configuration(tool::ConfigNode& cfg, const std::optional<State>& exi
   }
   cfg.finish();
 
-  // Minimum image needs every edge to be at least twice the largest interaction range.
-  const double largest = largest_pair_cutoff(state.species);
+  // Minimum image needs every edge to be at least twice the largest interaction range (of hard
+  // bodies: a liquid fill's colloids and liquid do not interact as such, and the DPD engine checks
+  // its own ranges).
+  const double largest = liquid_fill ? 0.0 : largest_pair_cutoff(state.species);
   if (state.box.shortest_edge() < 2.0 * largest)
     cfg.fail(existing ? "" : "box", "expected box edges of at least " + std::to_string(2.0 * largest) +
                                         " (twice the largest cut-off, for the minimum image); the box is " +
@@ -106,10 +182,12 @@ State build_configuration(tool::ConfigNode& cfg, const std::optional<State>& exi
   try {
     if (placement == "lattice") place_on_lattice(state, req, rng);
     else if (placement == "uniform") place_uniformly(state, req, rng);
+    else if (liquid_fill) place_colloids(state, req, rng);
     else insert_randomly(state, req, rng);
   } catch (const PlacementFailure& e) {
     cfg.fail(existing ? "composition" : "box.packing_fraction", std::string("packing fraction cannot be reached: ") + e.what());
   }
+  if (fill) add_liquid(state, *fill, rng, cfg, liquid_record);
   if (placement == "lattice") {  // defensive: the lattice spacing rules out overlaps by construction
     if (HardOverlap(state).first_overlap()) throw RuntimeFailure("internal error: the lattice placement overlaps");
   }

@@ -30,6 +30,9 @@ nlohmann::json DpdRowSums::to_json() const {
   return {{"steps", steps},
           {"kinetic_temperature", kinetic_temperature},
           {"potential_energy", potential_energy},
+          {"colloid_translational", colloid_translational},
+          {"total_energy", total_energy},
+          {"colloid_rotational", colloid_rotational},
           {"kinetic", mat_json(kinetic)},
           {"virial", {mat_json(virial[0]), mat_json(virial[1]), mat_json(virial[2])}}};
 }
@@ -39,28 +42,42 @@ DpdRowSums DpdRowSums::from_json(const nlohmann::json& j) {
   r.steps = j.at("steps").get<std::int64_t>();
   r.kinetic_temperature = j.at("kinetic_temperature").get<double>();
   r.potential_energy = j.at("potential_energy").get<double>();
+  r.colloid_translational = j.at("colloid_translational").get<double>();
+  r.total_energy = j.at("total_energy").get<double>();
+  r.colloid_rotational = j.at("colloid_rotational").get<double>();
   r.kinetic = mat_from(j.at("kinetic"));
   for (int k = 0; k < 3; ++k) r.virial[static_cast<std::size_t>(k)] = mat_from(j.at("virial")[static_cast<std::size_t>(k)]);
   return r;
 }
 
-void DpdRunner::check_liquid_species(const std::string& config_file) const {
+std::size_t DpdRunner::named_species(const std::string& name, const std::string& key, std::size_t k, const std::string& config_file) const {
+  const int s = species_index(state_.species, name);
+  if (s < 0)
+    throw InputError(config_file, key + "[" + std::to_string(k) + "]", "unknown species '" + name + "': expected one of the input's species");
+  return static_cast<std::size_t>(s);
+}
+
+std::vector<char> DpdRunner::liquid_species(const std::string& config_file) const {
   std::vector<char> liquid(state_.species.size(), protocol_.liquid_species.empty() ? 1 : 0);
+  if (protocol_.colloids)
+    for (std::size_t k = 0; k < protocol_.colloids->species.size(); ++k) {
+      const std::string& name = protocol_.colloids->species[k];
+      const std::size_t s = named_species(name, "colloids.species", k, config_file);
+      if (protocol_.liquid_species.empty()) liquid[s] = 0;  // the liquid: every other species
+    }
   for (std::size_t k = 0; k < protocol_.liquid_species.size(); ++k) {
-    const int s = species_index(state_.species, protocol_.liquid_species[k]);
-    if (s < 0)
-      throw InputError(config_file, "liquid.species[" + std::to_string(k) + "]",
-                       "unknown species '" + protocol_.liquid_species[k] + "': expected one of the input's species");
-    liquid[static_cast<std::size_t>(s)] = 1;
+    liquid[named_species(protocol_.liquid_species[k], "liquid.species", k, config_file)] = 1;
   }
   for (std::size_t s = 0; s < liquid.size(); ++s) {
     if (liquid[s] && state_.species[s].shape.is_anisotropic())
       throw InputError(config_file, "liquid.species", "expected point-like liquid particles (a sphere species); '" +
-                                                          state_.species[s].name + "' is not a sphere");
-    if (!liquid[s])
-      throw InputError(config_file, "liquid.species", "every species of the input must be a liquid species: colloids are not "
-                                                      "implemented yet (species '" + state_.species[s].name + "')");
+                                                          state_.species[s].name + "' is not a sphere (a colloid belongs in colloids.species)");
+    if (!liquid[s] && !protocol_.colloids)
+      throw InputError(config_file, "liquid.species", "species '" + state_.species[s].name +
+                                                          "' is not liquid: expected every species in liquid.species, or the "
+                                                          "others in colloids.species");
   }
+  return liquid;
 }
 
 void DpdRunner::start_velocities() {
@@ -76,7 +93,14 @@ void DpdRunner::start_velocities() {
   const KeyedRandom draw(replica_seed(protocol_.seed, protocol_.replica), kStartVelocities);
   Vec3 momentum = Vec3::Zero();
   double mass = 0.0;
+  std::vector<char> at_rest(p.size(), 0);  // the colloids start at rest (spec 30 §5)
+  if (colloids_)
+    for (const std::int32_t c : colloids_->colloids()) at_rest[static_cast<std::size_t>(c)] = 1;
   for (std::size_t i = 0; i < p.size(); ++i) {
+    if (at_rest[i]) {
+      p.set_velocity(i, Vec3::Zero());
+      continue;
+    }
     double z[3];
     draw.normals(0, static_cast<std::uint64_t>(p.id[i]), 0, z, 3);
     const double m = state_.species[static_cast<std::size_t>(p.species[i])].mass;
@@ -85,13 +109,14 @@ void DpdRunner::start_velocities() {
     momentum += m * v;
     mass += m;
   }
-  for (std::size_t i = 0; i < p.size(); ++i) p.set_velocity(i, p.velocity(i) - momentum / mass);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (!at_rest[i]) p.set_velocity(i, p.velocity(i) - momentum / mass);
   summary_["start_velocities"] = "maxwell_boltzmann";
 }
 
 DpdRunner::DpdRunner(State& state, const DpdProtocol& protocol, const std::string& config_file, bool quiet)
     : state_(state), protocol_(protocol), production_(state, *this, run::production_settings(protocol, "dpd"), quiet) {
-  check_liquid_species(config_file);
+  const std::vector<char> liquid = liquid_species(config_file);
   const double reach = protocol_.liquid.cutoff + protocol_.skin;
   if (!(state_.box.edges().minCoeff() >= 2.0 * reach))
     throw InputError(config_file, "liquid.cutoff", "expected a box at least twice the cut-off plus the skin (" + std::to_string(2.0 * reach) +
@@ -108,9 +133,16 @@ DpdRunner::DpdRunner(State& state, const DpdProtocol& protocol, const std::strin
 
   const std::uint64_t seed = replica_seed(protocol_.seed, protocol_.replica);
   pairs_ = std::make_unique<DpdForceField>(protocol_.liquid, protocol_.time_step, seed, protocol_.skin);
-  std::vector<BodyInertia> inertia;
-  for (const Species& sp : state_.species) inertia.push_back({sp.mass, Vec3::Zero()});  // point particles
-  integrator_ = std::make_unique<RigidBodyNve>(protocol_.time_step, inertia, [this](const State& s, BodyForces& out) { (*pairs_)(s, out); });
+  for (const Species& sp : state_.species) inertia_.push_back({sp.mass, Vec3::Zero()});  // point particles
+  if (protocol_.colloids) {
+    colloids_ = std::make_unique<ColloidCoupling>(state_, liquid, protocol_, seed, config_file);
+    pairs_->set_liquid(colloids_->liquid());
+    inertia_ = colloids_->inertia(state_.species);
+    // The outputs' species table records the masses the run used (density matched, spec 30 §3).
+    for (std::size_t s = 0; s < state_.species.size(); ++s) state_.species[s].mass = inertia_[s].mass;
+  }
+  integrator_ = std::make_unique<RigidBodyNve>(protocol_.time_step, inertia_, [this](const State& s, BodyForces& out) { forces(s, out); });
+  select_frame_particles(config_file);
 
   if (protocol_.green_kubo)
     green_kubo_ = std::make_unique<run::GreenKuboRecorder>(*protocol_.green_kubo, protocol_.time_step, run::run_steps(protocol_),
@@ -121,11 +153,66 @@ DpdRunner::DpdRunner(State& state, const DpdProtocol& protocol, const std::strin
   summary_["liquid"] = {{"a", d.a}, {"gamma", d.gamma}, {"kT", d.kT}, {"cutoff", d.cutoff}, {"skin", protocol_.skin},
                         {"noise_amplitude", std::sqrt(2.0 * d.gamma * d.kT)}};
   summary_["particles"] = state_.particles.size();
+  if (colloids_) {
+    nlohmann::json bodies = nlohmann::json::object();
+    for (std::size_t s = 0; s < state_.species.size(); ++s) {
+      const ColloidBody& b = colloids_->bodies()[s];
+      if (b.sites.size() == 0) continue;
+      bodies[state_.species[s].name] = {{"sites", b.sites.size()}, {"mass", b.mass}, {"moment_perpendicular", b.moments.x()},
+                                        {"volume", b.volume}, {"rotational_degrees", b.rotational_degrees}};
+    }
+    const auto& sh = protocol_.colloids->shell;
+    summary_["colloids"] = {{"count", colloids_->colloids().size()}, {"liquid", colloids_->liquid().size()}, {"bodies", bodies},
+                            {"gamma_surface", sh.gamma_surface}, {"shell", sh.shell},
+                            {"shell_noise", sh.noise == SiteLiquidParameters::ShellNoise::Vector3d ? "vector3d" : "along_v"}};
+  }
   summary_["density"] = static_cast<double>(state_.particles.size()) / state_.box.volume();
 }
 
+void DpdRunner::select_frame_particles(const std::string& config_file) {
+  if (protocol_.frame_species.empty()) return;
+  std::vector<char> shown(state_.species.size(), 0);
+  for (std::size_t k = 0; k < protocol_.frame_species.size(); ++k) {
+    shown[named_species(protocol_.frame_species[k], "frame_species", k, config_file)] = 1;
+  }
+  for (std::size_t i = 0; i < state_.particles.size(); ++i)
+    if (shown[static_cast<std::size_t>(state_.particles.species[i])]) frame_particles_.push_back(i);
+  if (frame_particles_.empty()) throw InputError(config_file, "frame_species", "expected species that have particles in the input");
+}
+
+const State& DpdRunner::frame_state(const State& full) {
+  if (frame_particles_.empty()) return full;
+  const Particles& p = full.particles;
+  frame_subset_.box = full.box;
+  frame_subset_.species = full.species;
+  frame_subset_.step = full.step;
+  frame_subset_.time = full.time;
+  Particles& q = frame_subset_.particles;
+  q = Particles{};
+  if (p.has_velocities()) q.carry_velocities();
+  if (p.has_angular_momenta()) q.carry_angular_momenta();
+  for (const std::size_t i : frame_particles_) {
+    q.add(p.species[i], p.position(i), p.orientation(i), p.id[i]);
+    const std::size_t k = q.size() - 1;
+    q.set_image(k, p.image(i));
+    if (p.has_velocities()) q.set_velocity(k, p.velocity(i));
+    if (p.has_angular_momenta()) q.set_angular_momentum(k, p.angular_momentum(i));
+  }
+  return frame_subset_;
+}
+
+void DpdRunner::forces(const State& s, BodyForces& out) {
+  (*pairs_)(s, out);
+  if (colloids_) (*colloids_)(s, out);
+}
+
+void DpdRunner::set_noise_step(std::uint64_t step) {
+  pairs_->set_noise_step(step);
+  if (colloids_) colloids_->set_noise_step(step);
+}
+
 double DpdRunner::advance() {
-  pairs_->set_noise_step(static_cast<std::uint64_t>(production_.step()) + 1);
+  set_noise_step(static_cast<std::uint64_t>(production_.step()) + 1);
   const double dt = integrator_->step(state_);
   add_to_row();
   return dt;
@@ -136,19 +223,31 @@ void DpdRunner::add_to_row() {
   Mat3 kinetic = Mat3::Zero();
   for (std::size_t i = 0; i < p.size(); ++i) {
     const Vec3 v = p.velocity(i);
-    kinetic += state_.species[static_cast<std::size_t>(p.species[i])].mass * (v * v.transpose());
+    kinetic += inertia_[static_cast<std::size_t>(p.species[i])].mass * (v * v.transpose());
   }
   const double n = static_cast<double>(p.size());
-  const auto& sums = pairs_->last_sums();
+  std::array<Mat3, 3> virial = pairs_->last_sums().virial;
+  double energy = pairs_->last_sums().energy;
+  double liquid_kinetic = kinetic.trace(), n_liquid = n, rotational = 0.0;
+  if (colloids_) {
+    const ColloidKinetics k = colloids_->kinetics(state_);
+    rotational = k.rotational;
+    liquid_kinetic -= k.translational;
+    n_liquid = static_cast<double>(colloids_->liquid().size());
+    row_.colloid_translational += k.translational;
+    row_.colloid_rotational += k.rotational;
+    energy += colloids_->last_sums().energy;
+    for (std::size_t part = 0; part < 3; ++part) virial[part] += colloids_->last_sums().virial[part];
+  }
   row_.steps += 1;
   row_.kinetic += kinetic;
-  row_.kinetic_temperature += kinetic.trace() / (3.0 * (n - 1.0));
-  row_.potential_energy += sums.energy / n;
-  for (std::size_t k = 0; k < 3; ++k) row_.virial[k] += sums.virial[k];
+  row_.kinetic_temperature += liquid_kinetic / (3.0 * (n_liquid - 1.0));
+  row_.potential_energy += energy / n;
+  row_.total_energy += (0.5 * (kinetic.trace() + rotational) + energy) / n;
+  for (std::size_t k = 0; k < 3; ++k) row_.virial[k] += virial[k];
   if (!green_kubo_) return;
   const double volume = state_.box.volume();
-  green_kubo_->add(production_.step() + 1,
-                   {kinetic / volume, sums.virial[0] / volume, sums.virial[1] / volume, sums.virial[2] / volume}, *out_);
+  green_kubo_->add(production_.step() + 1, {kinetic / volume, virial[0] / volume, virial[1] / volume, virial[2] / volume}, *out_);
 }
 
 void DpdRunner::observe(io::H5mdWriter& out, std::int64_t step, double t) {
@@ -165,9 +264,16 @@ void DpdRunner::observe(io::H5mdWriter& out, std::int64_t step, double t) {
   out.append_observable("pressure_tensor_dissipative", step, t, six(parts[1]));
   out.append_observable("pressure_tensor_random", step, t, six(parts[2]));
   out.append_observable("potential_energy", step, t, row_.potential_energy / steps);
+  out.append_observable("total_energy", step, t, row_.total_energy / steps);
+  if (colloids_) {
+    const double n = static_cast<double>(colloids_->colloids().size());
+    out.append_observable("colloid_temperature_translational", step, t, row_.colloid_translational / (3.0 * n * steps));
+    if (const int f = colloids_->rotational_degrees(state_); f > 0)
+      out.append_observable("colloid_temperature_rotational", step, t, row_.colloid_rotational / (f * steps));
+  }
   Vec3 momentum = Vec3::Zero();
   const Particles& p = state_.particles;
-  for (std::size_t i = 0; i < p.size(); ++i) momentum += state_.species[static_cast<std::size_t>(p.species[i])].mass * p.velocity(i);
+  for (std::size_t i = 0; i < p.size(); ++i) momentum += inertia_[static_cast<std::size_t>(p.species[i])].mass * p.velocity(i);
   out.append_observable("momentum", step, t, std::vector<double>{momentum.x(), momentum.y(), momentum.z()});
   row_ = DpdRowSums{};
   if (attributes_written_) return;
@@ -176,24 +282,34 @@ void DpdRunner::observe(io::H5mdWriter& out, std::int64_t step, double t) {
     out.set_observable_attribute(name, "definition", definition);
   };
   const std::string tensor = ": xx, yy, zz, xy, xz, yz, mean over the row's steps (velocities and forces of each step's end)";
-  attr("kinetic_temperature", "kT", "sum of m v^2 / (3 (N - 1)) over the particles, full-step velocities, mean over the row's steps");
+  attr("kinetic_temperature", "kT", "sum of m v^2 / (3 (N - 1)) over the N liquid particles, full-step velocities, mean over the row's steps");
+  if (colloids_) {
+    attr("colloid_temperature_translational", "kT", "sum of M V^2 / (3 N_c) over the N_c colloids (centre-of-mass velocities), mean over the row's steps");
+    if (colloids_->rotational_degrees(state_) > 0)
+      attr("colloid_temperature_rotational", "kT", "sum of L . omega over the colloids / their rotational degrees of freedom (2 per rod), mean over the row's steps");
+  }
   attr("pressure", "kT/r_c^3", "trace/3 of the pressure tensor (the sum of the four parts), mean over the row's steps");
   attr("pressure_tensor_kinetic", "kT/r_c^3", "sum of m v v / V" + tensor);
   attr("pressure_tensor_conservative", "kT/r_c^3", "sum over pairs of r_ij F^C_ij / V" + tensor);
   attr("pressure_tensor_dissipative", "kT/r_c^3", "sum over pairs of r_ij F^D_ij / V (half-step velocities)" + tensor);
   attr("pressure_tensor_random", "kT/r_c^3", "sum over pairs of r_ij F^R_ij / V" + tensor);
-  attr("potential_energy", "kT", "conservative energy per particle, sum of a r_c (1 - r/r_c)^2 / 2 over pairs, mean over the row's steps");
+  attr("potential_energy", "kT", "potential energy per particle: sum of a r_c (1 - r/r_c)^2 / 2 over liquid pairs plus the colloid cores, mean over the row's steps");
+  attr("total_energy", "kT", "(kinetic + rotational + potential energy) per particle, full-step velocities, mean over the row's steps; "
+                             "conserved only without thermostat (gamma = 0, gamma_surface = 0)");
   attr("momentum", "m r_c/tau", "total momentum sum m v at the row's last step (x, y, z)");
   attributes_written_ = true;
 }
 
 void DpdRunner::start() {
   start_velocities();
+  // Rotating colloids start at rest (spec 30 §5); carried from the start, so every frame has them.
+  if (colloids_ && colloids_->rotational_degrees(state_) > 0 && !state_.particles.has_angular_momenta())
+    state_.particles.carry_angular_momenta();
   // The starting forces, with the noise of step 0 (those after the drift of step n take n + 1).
   BodyForces forces;
   forces.reset(state_.particles.size());
-  pairs_->set_noise_step(0);
-  (*pairs_)(state_, forces);
+  set_noise_step(0);
+  this->forces(state_, forces);
   integrator_->restore_forces(std::move(forces));
 }
 
@@ -211,12 +327,15 @@ void DpdRunner::run(io::H5mdWriter& out, std::int64_t checkpoint_every, const st
 
 nlohmann::json DpdRunner::checkpoint_state() const {
   const BodyForces& f = integrator_->forces();
-  std::vector<double> force;
-  force.reserve(3 * f.force.size());
-  for (const Vec3& v : f.force) force.insert(force.end(), {v.x(), v.y(), v.z()});
+  auto flat = [](const std::vector<Vec3>& vs) {
+    std::vector<double> out;
+    out.reserve(3 * vs.size());
+    for (const Vec3& v : vs) out.insert(out.end(), {v.x(), v.y(), v.z()});
+    return out;
+  };
   return {{"production", production_.checkpoint_state()},
           {"row", row_.to_json()},
-          {"forces", {{"force", force}, {"energy", f.energy}, {"virial", mat_json(f.virial)}}},
+          {"forces", {{"force", flat(f.force)}, {"torque", flat(f.torque)}, {"energy", f.energy}, {"virial", mat_json(f.virial)}}},
           // The pair list's order decides the order of the force sums: rebuilt from these, it is the same.
           {"list_positions", pairs_->list_positions()},
           {"summary", summary_},
@@ -231,11 +350,16 @@ void DpdRunner::restore(const nlohmann::json& j) {
   const auto force = f.at("force").get<std::vector<double>>();
   BodyForces forces;
   forces.reset(force.size() / 3);
-  for (std::size_t i = 0; i < forces.force.size(); ++i) forces.force[i] = Vec3(force[3 * i], force[3 * i + 1], force[3 * i + 2]);
+  const auto torque = f.at("torque").get<std::vector<double>>();
+  for (std::size_t i = 0; i < forces.force.size(); ++i) {
+    forces.force[i] = Vec3(force[3 * i], force[3 * i + 1], force[3 * i + 2]);
+    forces.torque[i] = Vec3(torque[3 * i], torque[3 * i + 1], torque[3 * i + 2]);
+  }
   forces.energy = f.at("energy").get<double>();
   forces.virial = mat_from(f.at("virial"));
   integrator_->restore_forces(std::move(forces));
-  pairs_->restore_list(state_.box, j.at("list_positions").get<std::vector<double>>());
+  const auto list_positions = j.at("list_positions").get<std::vector<double>>();
+  if (!list_positions.empty()) pairs_->restore_list(state_.box, list_positions);  // none: colloids alone
   summary_ = j.at("summary");
   if (green_kubo_) green_kubo_->restore(j.at("green_kubo"));
 }

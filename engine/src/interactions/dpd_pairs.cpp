@@ -17,6 +17,7 @@ DpdForceField::DpdForceField(DpdParameters params, double time_step, std::uint64
 
 void DpdForceField::set_liquid(std::vector<std::int32_t> indices) {
   liquid_ = std::move(indices);
+  subset_ = true;
   list_.invalidate();
 }
 
@@ -44,7 +45,7 @@ void DpdForceField::gather(const Particles& p, std::size_t n) {
 
 void DpdForceField::update_list(const State& s, std::size_t n) {
   const Particles& p = s.particles;
-  if (liquid_.empty()) {
+  if (!subset_) {
     list_.update(s.box, p.x.data(), p.y.data(), p.z.data(), n);
     return;
   }
@@ -194,7 +195,11 @@ void DpdForceField::rows(std::size_t begin, std::size_t end, std::size_t block_e
 
 void DpdForceField::operator()(const State& s, BodyForces& out) {
   const Particles& p = s.particles;
-  const std::size_t n = liquid_.empty() ? p.size() : liquid_.size();  // liquid particles
+  const std::size_t n = subset_ ? liquid_.size() : p.size();  // liquid particles
+  if (n == 0) {  // colloids alone (a free body in vacuum)
+    sums_ = DpdSums{};
+    return;
+  }
   update_list(s, n);
   gather(p, n);
   // Uninitialised: only the slots of pairs across blocks are ever written, near the blocks' ends,

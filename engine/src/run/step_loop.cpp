@@ -28,7 +28,7 @@ void StepLoop::observe(io::H5mdWriter& out) {
 }
 
 void StepLoop::write_frame(io::H5mdWriter& out) {
-  out.append_frame(state_, client_.frame_elements());
+  out.append_frame(client_.frame_state(state_), client_.frame_elements());
   frames_.written_at(step_);
 }
 

@@ -1,5 +1,6 @@
 #include "anisodyn/run/time_step_run.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "anisodyn/run/step_unit.hpp"
@@ -14,6 +15,15 @@ TimeStepRun parse_time_step_run(tool::ConfigNode& cfg, const std::string& engine
   cfg.reject_unless(false, "field", "in a " + engine + " run (no external field)");
   const StepUnit unit = StepUnit::steps();
   r.segments = parse_schedule(cfg, unit, false);
+  // A fixed step makes a run length in time a number of steps: the nearest whole number when the
+  // time is one to round-off (200 τ at Δt = 0.005 is 40000 steps, not the 40001 that summing
+  // 0.005 forty thousand times would take), else the next one up.
+  for (FieldSegment& s : r.segments) {
+    if (s.unit != FieldSegment::Unit::Time) continue;
+    const double steps = s.length / r.time_step, nearest = std::round(steps);
+    s.length = std::abs(steps - nearest) <= 1e-9 * std::max(1.0, steps) ? nearest : std::ceil(steps);
+    s.unit = FieldSegment::Unit::Steps;
+  }
   r.frames = parse_frame_rules(cfg, unit);
   r.observe_every = cfg.positive_integer("observe_every", 100);
   return r;
@@ -24,12 +34,9 @@ ProductionSettings production_settings(const TimeStepRun& run, const std::string
 }
 
 std::int64_t run_steps(const TimeStepRun& run) {
-  double end = 0.0;  // in steps
-  for (const FieldSegment& s : run.segments) {
-    const double length = s.unit == FieldSegment::Unit::Steps ? s.length : s.length / run.time_step;
-    end = s.absolute ? length : end + length;
-  }
-  return static_cast<std::int64_t>(std::ceil(end - 1e-9));
+  double end = 0.0;  // in steps (parse_time_step_run made every segment's length steps)
+  for (const FieldSegment& s : run.segments) end = s.absolute ? s.length : end + s.length;
+  return static_cast<std::int64_t>(std::llround(end));
 }
 
 }  // namespace anisodyn::run

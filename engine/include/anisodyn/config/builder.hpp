@@ -54,4 +54,13 @@ void place_uniformly(State& state, const PlacementRequest& request, Rng& rng);
 /// overlap anything already present (largest particles first).
 void insert_randomly(State& state, const PlacementRequest& request, Rng& rng);
 
+/// Whether point r lies inside the body of particle i (spheres and spherocylinders; the DPD
+/// colloids). InputError for other shapes.
+bool inside_body(const State& state, std::size_t i, const Vec3& r);
+
+/// Appends `count` point particles of species `liquid` (a DPD liquid, spec 30 §5) at uniformly
+/// random positions outside the bodies of the particles already present: a position inside one is
+/// drawn again. PlacementFailure when a particle needs more than max_attempts draws.
+void fill_liquid(State& state, int liquid, std::size_t count, Rng& rng, std::size_t max_attempts = 10000);
+
 }  // namespace anisodyn

@@ -13,8 +13,9 @@ namespace anisodyn {
 /// randomly into that state (its box and species are kept; new species are appended).
 /// Every problem with the request is reported as an InputError naming the JSON path.
 /// With diffusion_origins given, it receives {species name: where its diffusion coefficients came
-/// from} for the species the configuration defines (see parse_species).
+/// from} for the species the configuration defines (see parse_species). With liquid_record given,
+/// placement "colloids_in_liquid" records its counts there (liquid_particles, colloids, density, …).
 State build_configuration(tool::ConfigNode& cfg, const std::optional<State>& existing, std::uint64_t seed, std::uint64_t replica = 0,
-                          nlohmann::json* diffusion_origins = nullptr);
+                          nlohmann::json* diffusion_origins = nullptr, nlohmann::json* liquid_record = nullptr);
 
 }  // namespace anisodyn

@@ -5,7 +5,10 @@
 //    "liquid": {"species": ["liquid"], "a": 25, "gamma": 4.5, "cutoff": 1, "skin": 0.3},
 //    "velocities": "input" | "maxwell_boltzmann",
 //    "frames": {...}, "observe_every": 100,
-//    "green_kubo": {"blocks": 10, "max_lag": 20}}
+//    "green_kubo": {"blocks": 10, "max_lag": 20},
+//    "colloids": {"species": ["rod"], "gamma_surface": 6.667, "shell": 0.5, "shell_noise": "vector3d",
+//                 "mass_density": 3, "site_spacing": 0.5},
+//    "frame_species": ["rod"]}
 // Reduced units of spec 30 §1: lengths in r_c, energies in kT, masses in m (the species' masses).
 #include <cstdint>
 #include <optional>
@@ -13,6 +16,7 @@
 #include <vector>
 
 #include "anisodyn/interactions/dpd_pairs.hpp"
+#include "anisodyn/interactions/site_liquid.hpp"
 #include "anisodyn/run/green_kubo.hpp"
 #include "anisodyn/run/time_step_run.hpp"
 #include "anisodyn/tool/json_config.hpp"
@@ -20,6 +24,8 @@
 namespace anisodyn {
 
 struct DpdProtocol : run::TimeStepRun {
+  /// The runner checks its own interaction ranges against the box (not the shapes' hard-body rule).
+  static constexpr bool kChecksOwnRanges = true;
   DpdParameters liquid;
   std::vector<std::string> liquid_species;  // empty: every species of the input
   double skin = 0.3;
@@ -28,6 +34,17 @@ struct DpdProtocol : run::TimeStepRun {
   enum class Velocities { Default, Input, MaxwellBoltzmann } velocities = Velocities::Default;
   /// The Green–Kubo record of the stress (run/green_kubo.hpp); absent: none.
   std::optional<run::GreenKuboSettings> green_kubo;
+  /// Rigid colloids in the liquid (spec 30 §3–§4); absent: a pure liquid.
+  struct Colloids {
+    std::vector<std::string> species;  // required, at least one
+    SiteLiquidParameters shell;        // gamma_surface, shell, shell_noise (kT is the run's)
+    double mass_density = 3.0;         // ρ of the density-matched masses (§3.1–§3.2)
+    double site_spacing = 0.5;         // Δl of a rod's spheres
+  };
+  std::optional<Colloids> colloids;
+  /// The species whose particles the frames hold (all particles of the others are left out);
+  /// empty: every particle.
+  std::vector<std::string> frame_species;
 };
 
 DpdProtocol parse_dpd_protocol(tool::ConfigNode& cfg);

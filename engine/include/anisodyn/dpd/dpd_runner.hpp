@@ -20,6 +20,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "anisodyn/dpd/colloid_coupling.hpp"
 #include "anisodyn/dpd/dpd_protocol.hpp"
 #include "anisodyn/integrate/rigid_body_nve.hpp"
 #include "anisodyn/interactions/dpd_pairs.hpp"
@@ -33,6 +34,8 @@ namespace anisodyn {
 struct DpdRowSums {
   std::int64_t steps = 0;
   double kinetic_temperature = 0.0, potential_energy = 0.0;
+  double colloid_translational = 0.0, colloid_rotational = 0.0;  // Σ M V², Σ L·ω
+  double total_energy = 0.0;  // per particle
   Mat3 kinetic = Mat3::Zero();                // Σ m v vᵀ
   std::array<Mat3, 3> virial{Mat3::Zero(), Mat3::Zero(), Mat3::Zero()};  // Σ r_ij F_ijᵀ by part
 
@@ -55,8 +58,17 @@ class DpdRunner : public run::FieldlessClient {
   double advance() override;
   void observe(io::H5mdWriter& out, std::int64_t step, double time) override;
 
-  /// Checks that every species is a liquid one (colloids are not built yet).
-  void check_liquid_species(const std::string& config_file) const;
+  /// The index of species `name`, entry k of list `key` (InputError if the input has none of that name).
+  std::size_t named_species(const std::string& name, const std::string& key, std::size_t k, const std::string& config_file) const;
+  /// Which species are liquid (liquid.species, or every species that is not a colloid); without
+  /// colloids every species must be.
+  std::vector<char> liquid_species(const std::string& config_file) const;
+  /// The state the frames show: every particle, or those of frame_species.
+  const State& frame_state(const State& full) override;
+  void select_frame_particles(const std::string& config_file);
+  /// The DPD forces, and the colloids' with the liquid.
+  void forces(const State& s, BodyForces& out);
+  void set_noise_step(std::uint64_t step);
   /// A fresh run's start: the velocities (the input's, or Maxwell–Boltzmann) and the first forces.
   void start();
   void start_velocities();
@@ -66,6 +78,10 @@ class DpdRunner : public run::FieldlessClient {
   State& state_;
   DpdProtocol protocol_;
   std::unique_ptr<DpdForceField> pairs_;
+  std::unique_ptr<ColloidCoupling> colloids_;  // null: a pure liquid
+  std::vector<BodyInertia> inertia_;           // per species
+  std::vector<std::size_t> frame_particles_;   // empty: every particle
+  State frame_subset_;
   std::unique_ptr<RigidBodyNve> integrator_;
   run::ProductionRunner production_;
   std::unique_ptr<run::GreenKuboRecorder> green_kubo_;

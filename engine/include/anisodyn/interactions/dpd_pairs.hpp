@@ -66,8 +66,8 @@ class DpdForceField {
   /// Every particle is liquid unless set_liquid() says which are; seed keys the pair noise.
   DpdForceField(DpdParameters params, double time_step, std::uint64_t seed, double skin);
 
-  /// The liquid particles (indices into the state, ascending); the others (colloids) get no DPD
-  /// force. Empty: every particle.
+  /// The liquid particles (indices into the state, ascending; none: colloids alone); the others
+  /// (colloids) get no DPD force. Until it is called, every particle is liquid.
   void set_liquid(std::vector<std::int32_t> indices);
 
   /// Adds the DPD forces of state s into out (forces, energy, virial summed over the parts).
@@ -84,7 +84,7 @@ class DpdForceField {
 
  private:
   /// The state index of liquid particle u.
-  std::size_t particle(std::size_t u) const { return liquid_.empty() ? u : static_cast<std::size_t>(liquid_[u]); }
+  std::size_t particle(std::size_t u) const { return subset_ ? static_cast<std::size_t>(liquid_[u]) : u; }
   /// The pair list of the n liquid particles' positions, rebuilt when stale.
   void update_list(const State& s, std::size_t n);
   /// Copies the n liquid particles into the arrays of the list's order.
@@ -111,7 +111,8 @@ class DpdForceField {
   double noise_amplitude_;  // √(2γkT/Δt)
   PairNoise noise_;
   CellOrderedPairs list_;
-  std::vector<std::int32_t> liquid_;        // empty: every particle
+  std::vector<std::int32_t> liquid_;        // when subset_: the liquid particles
+  bool subset_ = false;
   std::vector<double> lx_, ly_, lz_;        // the liquid's positions, for the list (when a subset)
   std::uint64_t noise_step_ = 0;
   // Per position of the list's order: positions, velocities, ids.

@@ -43,7 +43,9 @@ void run_production_engine(tool::CommonOptions& opt, const tool::ToolInfo& info,
   State state = files.starting_state(input);
   state.step = 0;
   state.time = 0.0;
-  require_minimum_image(state, input);
+  // The hard-body minimum-image rule; an engine whose interactions are not the shapes' own (DPD:
+  // a liquid of soft points, colloids seen through their sites) checks its ranges itself.
+  if constexpr (!requires { Protocol::kChecksOwnRanges; }) require_minimum_image(state, input);
   std::unique_ptr<Runner> runner;
   try {
     runner = std::make_unique<Runner>(state, protocol, opt.config_name(), opt.quiet);

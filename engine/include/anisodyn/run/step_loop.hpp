@@ -27,6 +27,8 @@ class StepClient {
   virtual void after_step(io::H5mdWriter&, std::int64_t /*step*/, double /*time*/) {}
   /// Engine-specific per-particle data written with every frame (pointers valid until the next call).
   virtual std::vector<io::ParticleElement> frame_elements() const { return {}; }
+  /// The state a frame shows: the full one, or a part of it (DPD's colloids without the liquid).
+  virtual const State& frame_state(const State& full) { return full; }
 };
 
 class StepLoop {

@@ -27,7 +27,7 @@ struct TimeStepRun {
 /// `schedule` and `field` are refused, naming `engine` ("BD", "DPD").
 TimeStepRun parse_time_step_run(tool::ConfigNode& cfg, const std::string& engine);
 
-/// The number of steps of the run (its segments' end, in steps; a time rounded up to whole steps).
+/// The number of steps of the run (its segments' end; parse_time_step_run gave every length in steps).
 std::int64_t run_steps(const TimeStepRun& run);
 
 /// The production runner's settings for such a run; `label` names the progress line.
