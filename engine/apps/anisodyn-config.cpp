@@ -18,7 +18,11 @@ tool::Description description() {
   d.role = tool::Role::Builder;
   d.replica = true;
   d.inputs = {"state", 0, 1, "an existing state to insert the new particles into (its box and particles are kept)"};
-  d.output = {"state", "H5MD", "one frame: the configuration", {{"sum_over", "composition"}, {"key", "count"}}};
+  // The particles it adds, for cost estimates: the composition's counts, plus a liquid fill's density × box volume.
+  d.output = {"state", "H5MD", "one frame: the configuration",
+              {{"sum_over", "composition"},
+               {"key", "count"},
+               {"fill", {{"when", "liquid"}, {"density", "liquid.density"}, {"default_density", 3.0}, {"edges", "box.edges"}}}}};
   d.parameters = {
       tool::seed_parameter(),
       tool::optional("species", "array", nullptr,

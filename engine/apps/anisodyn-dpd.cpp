@@ -26,6 +26,11 @@ tool::Description description() {
       tool::optional("green_kubo", "object", nullptr,
                      "{blocks (10), max_lag (20)}: the off-diagonal pressure tensor (total and each part) sampled every step into a "
                      "multiple-tau autocorrelator, one row of stress_acf per block, for anisodyn-viscosity (absent: not recorded)"),
+      tool::optional("colloids", "object", nullptr,
+                     "{species (required), gamma_surface (0), shell (0.5), shell_noise (vector3d | along_v), mass_density (3), "
+                     "site_spacing (0.5)}: rigid colloids in the liquid, spheres as point masses and rods as linear rotors of "
+                     "sites, with the Mie(50,49) core and the friction shell (spec 30 §3-§4; absent: a pure liquid)"),
+      tool::optional("frame_species", "array", nullptr, "the species whose particles the frames hold (absent: every particle)"),
   };
   // Work of a job = particles x steps; rate: 24000 liquid particles, one core, bench/dpd_throughput.cpp.
   d.cost = {{"kind", "model"},

@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """The report's scalar plots with several series (docs/manifests.md, Report), on synthetic analysis outputs:
-  1. the manifest check refuses bad series lists, x_scale and linear lines, naming the JSON path;
+  1. the manifest check refuses bad series lists, x_scale, y_scale, linear and periodic-box lines, naming the JSON path;
   2. a series list draws each entry's scalar against grid value × x_scale (its own stage and select), an
      entry whose stage does not depend on x as a horizontal line with its ±band, and the linear theory line
-     from x = 0; the single-scalar form takes x_scale too;
+     from x = 0; the single-scalar form takes x_scale too; y_scale and an entry's own scales; Hasimoto's stick
+     and slip lines and (1 - phi)/pi against their formulas (spec 30 §10);
   3. at report time: an entry with several grid points at one x, a band on an entry that varies with x, and
      a missing scalar are errors naming the entry's path; an entry whose select matches nothing draws nothing.
 argv: [1] build bin dir (unused), [2] scratch dir, [3] source dir."""
@@ -61,6 +62,12 @@ BAD = [  # (what, plot, the path the message must name)
     ("x_power 0", dict(GOOD_PLOT, x_power=0), "report.plots[0].x_power"),
     ("x_power on a grid of texts", dict({k: v for k, v in GOOD_PLOT.items() if k != "x_scale"}, x="label", x_power=2),
      "report.plots[0].x_power"),
+    ("y_scale 0", dict(GOOD_PLOT, y_scale=0), "report.plots[0].y_scale"),
+    ("an entry's x_scale as text", dict(GOOD_PLOT, series=[{"stage": "pairs", "scalar": "D", "x_scale": "2"}]),
+     "report.plots[0].series[0].x_scale"),
+    ("a Hasimoto line of an unknown boundary", dict(GOOD_PLOT, theory=[{"kind": "hasimoto", "boundary": "partial"}]),
+     "report.plots[0].theory[0].boundary"),
+    ("a band of 120%", dict(GOOD_PLOT, theory=[{"kind": "periodic_rotation", "band": 1.2}]), "report.plots[0].theory[0].band"),
     ("a stage beside a series list", dict(GOOD_PLOT, stage="pairs"), "report.plots[0].stage"),
     ("a scalar beside a series list", dict(GOOD_PLOT, scalar="D"), "report.plots[0]"),
     ("an empty series list", dict(GOOD_PLOT, series=[]), "report.plots[0].series"),
@@ -149,6 +156,25 @@ check(set(lines) == {"hardness = 1.0", "hardness = 2.0"} and np.allclose(lines["
 ax = draw({"name": "r", "stage": "pairs", "scalar": "D", "x": "N", "x_power": -1, "select": {"hardness": 1.0}})
 lines = labelled(ax)
 check("D" in lines and np.allclose(sorted(lines["D"].get_xdata()), sorted(1 / n for n in NS)), "x_power -1 draws against 1/N")
+
+# y_scale (the plot's, an entry's own) and an entry's x_scale; the periodic-box theory lines of spec 30 §10 against x = phi^(1/3).
+ax = draw({"name": "s", "x": "N", "x_scale": 0.001, "y_scale": 2.0,
+           "series": [{"stage": "pairs", "scalar": "D", "select": {"hardness": 1.0}, "label": "k"},
+                      {"stage": "pairs", "scalar": "D", "select": {"hardness": 2.0}, "x_scale": 0.0001, "y_scale": 3.0, "label": "2k"}],
+           "theory": [{"kind": "hasimoto", "boundary": "stick", "band": 0.2}, {"kind": "hasimoto", "boundary": "slip"},
+                      {"kind": "periodic_rotation"}]})
+lines = labelled(ax)
+check(np.allclose(lines["k"].get_ydata(), [2 * d_value(n, 1.0) for n in NS]) and np.allclose(lines["2k"].get_ydata(), [3 * d_value(n, 2.0) for n in NS])
+      and np.allclose(lines["2k"].get_xdata(), [0.009, 0.044, 0.176]), "y_scale multiplies the values, an entry's own x_scale and y_scale override the plot's")
+stick, slip, rot = lines["Hasimoto, stick"], lines["Hasimoto, slip"], lines["(1 - phi)/pi"]
+x = stick.get_xdata()
+phi = x ** 3
+q = 1 - 1.7601 * x + phi - 1.5593 * phi ** 2
+check(np.allclose(stick.get_ydata(), q / (3 * np.pi)) and np.isclose(stick.get_ydata()[0], 1 / (3 * np.pi)) and
+      np.allclose(slip.get_ydata(), q * (3 + 27.9 * phi) / 2 / (3 * np.pi)) and np.isclose(slip.get_ydata()[0], 1 / (2 * np.pi)) and
+      np.allclose(rot.get_ydata(), (1 - rot.get_xdata() ** 3) / np.pi),
+      "Hasimoto's stick Q/(3 pi) (1/(3 pi) at phi = 0), slip Q Q'/(3 pi) (1/(2 pi) at phi = 0) and (1 - phi)/pi")
+check(any(p.get_label() == "± 20%" for p in ax.collections), "the stick line's ±20% band")
 
 ax = draw(dict(GOOD_PLOT, select={"hardness": 2.0}, series=[{"stage": "pairs", "scalar": "D", "label": "2k"},
                                                              {"stage": "pairs", "scalar": "D", "select": {"hardness": 1.0}, "label": "k"}]))

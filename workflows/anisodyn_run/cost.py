@@ -8,7 +8,8 @@ rates_when entry whose key path is in the job's parameters, else R). A factor is
   "particles"                      the particle count of the job's system: from the job upstream
                                    whose tool's output declares "adds_particles" ({"sum_over": LIST,
                                    "key": COUNT}: the sum of COUNT over the entries of LIST, plus
-                                   the particles of its own first input);
+                                   the particles of its own first input, plus with "fill" a
+                                   density × box volume, filled())
   {"param": "key.path", "default": X}   a number from the job's parameters;
   {"rule": NAME, ...}              a named count (RULES below) for run lengths no single key gives;
   a number                         a constant.
@@ -109,12 +110,24 @@ def _lookup(params, path):
     return True, value
 
 
+def filled(params, fill):
+    """Particles a builder places to a density over its box ({"when": key, "density": key.path,
+    "default_density": x, "edges": key.path}: density × box volume when `when` is present)."""
+    if not fill or fill["when"] not in params:
+        return 0
+    found, density = _lookup(params, fill["density"])
+    found_edges, edges = _lookup(params, fill["edges"])
+    if not found_edges or not isinstance(edges, list) or not all(_number(e) for e in edges):
+        return 0
+    return round((density if found and _number(density) else fill["default_density"]) * math.prod(edges))
+
+
 def particles(job, jobs):
     """Particle count of a job's system, from the builder job(s) upstream (insertion adds)."""
     adds = job.info["output"].get("adds_particles")
     if adds:
         n = sum(int(c.get(adds["key"], 0)) for c in job.params.get(adds["sum_over"], []) if isinstance(c, dict))
-        return n + sum(particles(jobs[i], jobs) for i in job.inputs[:1])
+        return n + filled(job.params, adds.get("fill")) + sum(particles(jobs[i], jobs) for i in job.inputs[:1])
     for i in job.inputs:
         n = particles(jobs[i], jobs)
         if n:

@@ -260,16 +260,17 @@ def substitute(value, point, replica, study):
     return REFERENCE.sub(lambda mo: format_value(lookup(mo.group(1))), value)
 
 
-THEORY_KINDS = {"constant", "linear", "power", "exponential", "free_diffusion", "wertheim"}
+THEORY_KINDS = {"constant", "linear", "power", "exponential", "free_diffusion", "wertheim", "hasimoto", "periodic_rotation"}
 # The keys each report item reads (report.py): anything else would be silently ignored.
 SCALAR_BLOCK_KEYS = {"stage", "names", "caption"}
 PLOT_KEYS = {"name", "stage", "select", "log", "xlabel", "ylabel", "title", "caption", "theory"}
 TABLE_PLOT_KEYS = PLOT_KEYS | {"table", "x", "y", "errors"}
-SCALAR_PLOT_KEYS = PLOT_KEYS | {"scalar", "x", "x_scale", "x_power", "series"}
-SERIES_PLOT_KEYS = (PLOT_KEYS - {"stage"}) | {"x", "x_scale", "x_power", "series"}  # "series": a list of entries, each its own stage
-SERIES_ENTRY_KEYS = {"stage", "scalar", "label", "select", "band"}
+SCALAR_PLOT_KEYS = PLOT_KEYS | {"scalar", "x", "x_scale", "x_power", "y_scale", "series"}
+SERIES_PLOT_KEYS = (PLOT_KEYS - {"stage"}) | {"x", "x_scale", "x_power", "y_scale", "series"}  # "series": a list of entries, each its own stage
+SERIES_ENTRY_KEYS = {"stage", "scalar", "label", "select", "band", "x_scale", "y_scale"}
 THEORY_KEYS = {"constant": {"value"}, "linear": {"intercept", "slope"}, "power": {"prefactor", "exponent"},
-               "exponential": {"tau", "amplitude"}, "free_diffusion": {"species", "component"}, "wertheim": {"scalar"}}
+               "exponential": {"tau", "amplitude"}, "free_diffusion": {"species", "component"}, "wertheim": {"scalar"},
+               "hasimoto": {"boundary", "band"}, "periodic_rotation": {"band"}}
 THEORY_NUMBERS = {"linear": {"intercept", "slope"}}  # keys a line needs, each a number
 
 
@@ -311,6 +312,9 @@ def check_series_entries(item, p, stages, grid):
         check_select(e.get("select", {}), f"{q}.select", grid)
         if "band" in e and not (is_number(e["band"]) and 0 < e["band"] < 1):
             raise ManifestError(f"{q}.band", "a relative half-width between 0 and 1 (e.g. 0.02 for ±2%)", e["band"])
+        for key in ("x_scale", "y_scale"):
+            if key in e and (not is_number(e[key]) or e[key] == 0 or not math.isfinite(e[key])):
+                raise ManifestError(f"{q}.{key}", "a non-zero number (overrides the plot's)", e[key])
 
 
 def validate_report(m):
@@ -359,6 +363,8 @@ def validate_report(m):
                     if (axis == "x" or axis in item) and (not isinstance(value, str) or value not in grid):
                         raise ManifestError(f"{p}.{axis}", "a grid variable (" + (", ".join(grid) or "the manifest has none") + ")",
                                             value)
+                if "y_scale" in item and (not is_number(item["y_scale"]) or item["y_scale"] == 0 or not math.isfinite(item["y_scale"])):
+                    raise ManifestError(f"{p}.y_scale", "a non-zero number (the scalars and their errors are multiplied by it)", item["y_scale"])
                 for axis_key, meaning in (("x_scale", "the grid value times it"), ("x_power", "(the grid value times x_scale) to this power")):
                     if axis_key not in item:
                         continue
@@ -377,6 +383,10 @@ def validate_report(m):
                     raise ManifestError(f"{p}.theory[{j}].kind", "one of " + ", ".join(sorted(THEORY_KINDS)),
                                         t.get("kind") if isinstance(t, dict) else t)
                 check_keys(t, THEORY_KEYS[t["kind"]] | {"kind", "label"}, f"{p}.theory[{j}]", f"on a '{t['kind']}' line")
+                if t["kind"] == "hasimoto" and t.get("boundary", "stick") not in ("stick", "slip"):
+                    raise ManifestError(f"{p}.theory[{j}].boundary", "'stick' or 'slip'", t.get("boundary"))
+                if "band" in t and not (is_number(t["band"]) and 0 < t["band"] < 1):
+                    raise ManifestError(f"{p}.theory[{j}].band", "a relative half-width between 0 and 1 (e.g. 0.2 for ±20%)", t["band"])
                 for number in sorted(THEORY_NUMBERS.get(t["kind"], ())):
                     if not is_number(t.get(number)):
                         raise ManifestError(f"{p}.theory[{j}].{number}", f"a number (the line's {number})", t.get(number))

@@ -301,7 +301,7 @@ class Report:
         own stage, scalar and select (an entry whose stage does not depend on `x` is a horizontal line)."""
         import numpy as np
         x, factor, power = spec.get("x"), spec.get("x_scale", 1.0), spec.get("x_power", 1.0)
-        scale = (lambda v: (v * factor) ** power) if power != 1.0 else (lambda v: v * factor)  # grid value → x coordinate
+        scale = self.x_scaling(factor, power)  # grid value → x coordinate
         grid = self.m.get("grid", {})
         if x not in grid:
             raise ReportError(f"{where}.x: expected a grid variable ({', '.join(grid) or 'none'})")
@@ -309,13 +309,15 @@ class Report:
             xs = []
             for i, entry in enumerate(spec["series"]):
                 select = {**spec.get("select", {}), **entry.get("select", {})}
-                xs += self.listed_series(ax, entry, f"{where}.series[{i}]", x, scale, select)
+                own = self.x_scaling(entry.get("x_scale", factor), power)
+                xs += self.listed_series(ax, {"y_scale": spec.get("y_scale", 1.0), **entry}, f"{where}.series[{i}]", x, own, select)
         else:
             by = spec.get("series")
             if by is not None and by not in grid:
                 raise ReportError(f"{where}.series: expected a grid variable ({', '.join(grid) or 'none'})")
             groups = {}
             for xv, v, e, job in self.scalar_points(spec, where, x, scale, spec.get("select", {})):
+                v, e = v * spec.get("y_scale", 1.0), e * abs(spec.get("y_scale", 1.0))
                 groups.setdefault(format_value(job.point.get(by)) if by else "", []).append((xv, v, e))
             xs = []
             for label, pts in groups.items():
@@ -344,7 +346,8 @@ class Report:
         """One entry of a series list: its points against x, or a horizontal line (± `band`) when its stage
         does not depend on x. Several grid points at one x are an error: select must pick one."""
         label = entry.get("label", entry["scalar"])
-        points = self.scalar_points(entry, where, x, scale, select, constant_allowed=True)
+        y = entry.get("y_scale", 1.0)
+        points = [(xv, v * y, e * abs(y), job) for xv, v, e, job in self.scalar_points(entry, where, x, scale, select, constant_allowed=True)]
         if not points:  # as for the single scalar: a select no grid point matches (e.g. in a smoke variant) draws nothing
             return []
         if points[0][0] is None:
@@ -371,6 +374,11 @@ class Report:
                                   f"{format_value(job.point[x])} (they differ in {', '.join(differ)}); pick one with select")
             at[xv] = job
         return self.draw_points(ax, [p[:3] for p in points], label)
+
+    @staticmethod
+    def x_scaling(factor, power):
+        """Grid value → x coordinate: (value × factor) ** power."""
+        return (lambda v: (v * factor) ** power) if power != 1.0 else (lambda v: v * factor)
 
     @staticmethod
     def draw_points(ax, points, label):
@@ -418,8 +426,25 @@ class Report:
             pb = scalars[match[0]][0]
             ls = np.arange(max(1, int(lo)), int(hi) + 1)
             ax.plot(ls, (1 - pb) ** 2 * pb ** (ls - 1), label=t.get("label", f"Wertheim, p_b = {pb:.3g}"), **style)
+        elif kind in ("hasimoto", "periodic_rotation"):
+            # x = phi^(1/3): spec 30 §10's reduced D of a sphere in a simple cubic periodic array (Hasimoto's
+            # Q, with Q' = (3 + 27.9 phi)/2 for slip), or a body's rotation (1 - phi)/pi (Linke, Kofinger & Hummer).
+            line = np.linspace(0.0, hi, 200)
+            phi = line ** 3
+            if kind == "hasimoto":
+                y = (1 - 1.7601 * line + phi - 1.5593 * phi ** 2) / (3 * np.pi)
+                if t.get("boundary", "stick") == "slip":
+                    y *= (3 + 27.9 * phi) / 2
+                default = f"Hasimoto, {t.get('boundary', 'stick')}"
+            else:
+                y, default = (1 - phi) / np.pi, "(1 - phi)/pi"
+            line_art, = ax.plot(line, y, label=t.get("label", default), **{**style, "color": None})
+            if "band" in t:
+                ax.fill_between(line, y * (1 - t["band"]), y * (1 + t["band"]), color=line_art.get_color(), alpha=0.15, lw=0,
+                                label=f"± {100 * t['band']:g}%")
         else:
-            raise ReportError(f"{where}.theory: unknown kind '{kind}' (constant, linear, power, exponential, free_diffusion, wertheim)")
+            raise ReportError(f"{where}.theory: unknown kind '{kind}' (constant, linear, power, exponential, free_diffusion, wertheim, "
+                              "hasimoto, periodic_rotation)")
 
     def free_diffusivity(self, job, t, where):
         """D of the free-particle line (MSD = 2 D t), from the D0 scalars the msd stage wrote from its
