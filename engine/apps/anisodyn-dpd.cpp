@@ -28,9 +28,16 @@ tool::Description description() {
                      "multiple-tau autocorrelator, one row of stress_acf per block, for anisodyn-viscosity (absent: not recorded)"),
       tool::optional("colloids", "object", nullptr,
                      "{species (required), gamma_surface (0), shell (0.5), shell_noise (vector3d | along_v), mass_density (3), "
-                     "site_spacing (0.5)}: rigid colloids in the liquid, spheres as point masses and rods as linear rotors of "
+                     "site_spacing (0.5), fixed (false)}: rigid colloids in the liquid, spheres as point masses and rods as linear rotors of "
                      "sites, with the Mie(50,49) core and the friction shell (spec 30 §3-§4; absent: a pure liquid)"),
       tool::optional("frame_species", "array", nullptr, "the species whose particles the frames hold (absent: every particle)"),
+      tool::optional("walls", "object", nullptr,
+                     "{type: flat_mie, height, gamma_surface: [bottom, top], shell (0.5), shell_noise}: flat Mie(50,49) walls at z = 0 and "
+                     "z = height with friction shells (spec 30 §6; the box must be taller by the cut-off; absent: periodic in z)"),
+      tool::optional("drive", "object", nullptr, "{force: [fx, fy, fz], z_min, z_max}: a constant force on the liquid particles in the slab"),
+      tool::optional("profiles", "object", nullptr,
+                     "{z_bin, radial_bin, radial_max, midplane_half_width (0.25)}: liquid number and v_x per slab along z and per shell "
+                     "around the first colloid, per observation row (for anisodyn-flow)"),
   };
   // Work of a job = particles x steps; rate: 24000 liquid particles, one core, bench/dpd_throughput.cpp.
   d.cost = {{"kind", "model"},

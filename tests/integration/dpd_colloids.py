@@ -19,7 +19,6 @@
 """
 import json
 import os
-import subprocess
 import sys
 import time
 
@@ -29,13 +28,9 @@ import numpy as np
 bin_dir, tmp, source = sys.argv[1], sys.argv[2], sys.argv[3]
 sys.path.insert(0, os.path.join(source, "tests", "support"))
 from resume_checks import check_resumes, compare_outputs  # noqa: E402
-from script_io import enter_scratch, write  # noqa: E402
+from script_io import enter_scratch, observable, run, write  # noqa: E402
 
 enter_scratch(tmp)
-
-
-def run(cmd):
-    return subprocess.run(cmd, capture_output=True, text=True)
 
 
 def tool(name):
@@ -55,13 +50,6 @@ def config(name, colloid_shape, edge, seed=1):
 def block_mean(x, blocks=20):
     m = np.array([v.mean() for v in np.array_split(np.asarray(x), blocks)])
     return m.mean(), m.std(ddof=1) / np.sqrt(blocks)
-
-
-def observable(f, name):
-    for group in ("observables", "anisodyn/observables"):
-        if f"{group}/{name}" in f:
-            return f[f"{group}/{name}/value"][...]
-    raise KeyError(name)
 
 
 ROD = {"type": "spherocylinder", "length": 3.0, "diameter": 1.0}   # (d, L) = (1, 4): 7 sites
@@ -141,7 +129,7 @@ assert r.returncode == 0, r.stderr
 r = run([tool("anisodyn-dpd"), "-q", "--config", "nve.json", "--input", "relaxed.h5", "--output", "nve.h5"])
 assert r.returncode == 0, r.stderr
 with h5py.File("nve.h5") as f:
-    E = observable(f, "total_energy")
+    E, _ = observable(f, "total_energy")
     assert f["particles/all/position/value"].shape[1] == 1  # the colloid alone
 drift = abs(E[-1] - E[0])
 print(f"rod in the liquid, NVE (gamma 0, dt 0.002, 2000 steps): total energy per particle {E[0]:.6f} -> {E[-1]:.6f}, "
@@ -161,10 +149,10 @@ for label, start, noise in (("rod (1,4)", rod_start, "vector3d"), ("sphere d=2",
     assert r.returncode == 0, r.stderr
     with h5py.File(out) as f:
         skip = 10  # the first 10 tau: the colloid starts at rest
-        rows = {k: block_mean(observable(f, k)[skip:]) for k in ("kinetic_temperature", "colloid_temperature_translational")}
+        rows = {k: block_mean(observable(f, k)[0][skip:]) for k in ("kinetic_temperature", "colloid_temperature_translational")}
         if "rod" in label:
-            rows["colloid_temperature_rotational"] = block_mean(observable(f, "colloid_temperature_rotational")[skip:])
-        momentum = np.abs(observable(f, "momentum")).max()
+            rows["colloid_temperature_rotational"] = block_mean(observable(f, "colloid_temperature_rotational")[0][skip:])
+        momentum = np.abs(observable(f, "momentum")[0]).max()
     print(f"{label}, {noise} ({time.time() - t0:.1f} s): " + ", ".join(f"{k} {m:.4f} ± {s:.4f}" for k, (m, s) in rows.items())
           + f"; largest |total momentum| {momentum:.1e}")
     assert momentum < 1e-9, momentum

@@ -24,3 +24,16 @@ def write(name, value):
     """Writes value as JSON to name and returns name."""
     json.dump(value, open(name, "w"))
     return name
+
+
+def run(cmd):
+    """Runs a command line to completion, its output captured as text."""
+    return subprocess.run(cmd, capture_output=True, text=True)
+
+
+def observable(f, name):
+    """(values, times) of observable `name` of an open H5MD file, in /observables or /anisodyn/observables."""
+    for group in ("observables", "anisodyn/observables"):
+        if f"{group}/{name}" in f:
+            return f[f"{group}/{name}/value"][...], f[f"{group}/{name}/time"][...]
+    raise KeyError(name)

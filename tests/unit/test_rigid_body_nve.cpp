@@ -560,3 +560,28 @@ TEST(RigidBodyNve, RejectsBadInput) {
   nve.invalidate_forces();
   EXPECT_NO_THROW(nve.step(s));
 }
+
+TEST(RigidBodyNve, AFixedBodyStaysWhereItIsUnderForces) {
+  // Species 1 is held fixed (spec 30 §8): a constant force and torque move species 0 but leave the
+  // fixed body's position, orientation, velocity and angular momentum bit for bit as they were.
+  State s;
+  s.box = Box(Vec3::Constant(10.0));
+  s.particles.carry_velocities();
+  s.particles.carry_angular_momenta();
+  const Quat q = Quat(Eigen::AngleAxisd(0.3, Vec3(1, 2, 3).normalized()));
+  s.particles.add(0, Vec3(1, 2, 3), q, 0);
+  s.particles.add(1, Vec3(5, 5, 5), q, 1);
+  const ForceField push = [](const State& st, BodyForces& out) {
+    for (std::size_t i = 0; i < st.particles.size(); ++i) {
+      out.force[i] = Vec3(1.0, -0.5, 0.25);
+      out.torque[i] = Vec3(0.1, 0.2, 0.3);
+    }
+  };
+  RigidBodyNve nve(0.01, {{1.0, Vec3(1, 2, 3)}, {1.0, Vec3(1, 2, 3), true}}, push);
+  run(nve, s, 200);
+  EXPECT_EQ(s.particles.position(1), Vec3(5, 5, 5));
+  EXPECT_EQ(s.particles.orientation(1).coeffs(), q.coeffs());
+  EXPECT_EQ(s.particles.velocity(1), Vec3::Zero());
+  EXPECT_EQ(s.particles.angular_momentum(1), Vec3::Zero());
+  EXPECT_NEAR(s.particles.velocity(0).x(), 200 * 0.01 * 1.0, 1e-12);  // the free body: v = F t / m
+}

@@ -147,7 +147,7 @@ bool inside_body(const State& state, std::size_t i, const Vec3& r) {
   }
 }
 
-void fill_liquid(State& state, int liquid, std::size_t count, Rng& rng, std::size_t max_attempts) {
+void fill_liquid(State& state, int liquid, std::size_t count, Rng& rng, double z_min, double z_max, std::size_t max_attempts) {
   const std::size_t bodies = state.particles.size();
   std::int64_t id = next_id(state);
   const Vec3& L = state.box.edges();
@@ -156,7 +156,7 @@ void fill_liquid(State& state, int liquid, std::size_t count, Rng& rng, std::siz
     for (;; ++attempt) {
       if (attempt == max_attempts)
         throw PlacementFailure("no room for liquid particle " + std::to_string(k) + " after " + std::to_string(max_attempts) + " draws");
-      const Vec3 r(rng.uniform() * L.x(), rng.uniform() * L.y(), rng.uniform() * L.z());
+      const Vec3 r(rng.uniform() * L.x(), rng.uniform() * L.y(), z_min + rng.uniform() * (z_max - z_min));
       bool free = true;
       for (std::size_t i = 0; i < bodies && free; ++i) free = !inside_body(state, i, r);
       if (!free) continue;

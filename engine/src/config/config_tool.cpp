@@ -57,6 +57,7 @@ struct LiquidFill {
   int species = -1;
   double density = 3.0;
   bool subtract_colloid_volume = true;
+  double z_min = 0.0, z_max = -1.0;  // the slab the liquid fills (z_max < 0: the whole box)
 };
 
 LiquidFill parse_liquid_fill(tool::ConfigNode& cfg, const std::map<std::string, int>& index, const PlacementRequest& req) {
@@ -70,6 +71,13 @@ LiquidFill parse_liquid_fill(tool::ConfigNode& cfg, const std::map<std::string, 
     node.fail("species", "expected a species that is not in the composition (the composition places the colloids)");
   fill.density = node.positive("density", fill.density);
   fill.subtract_colloid_volume = node.boolean("subtract_colloid_volume", fill.subtract_colloid_volume);
+  if (node.has("z_range")) {  // a channel between walls (spec 30 §6)
+    const auto range = node.numbers("z_range");
+    if (range.size() != 2 || !(range[0] >= 0.0) || !(range[1] > range[0]))
+      node.fail("z_range", "expected [z_min, z_max] with 0 <= z_min < z_max: the slab of the box the liquid fills");
+    fill.z_min = range[0];
+    fill.z_max = range[1];
+  }
   return fill;
 }
 
@@ -84,12 +92,15 @@ void add_liquid(State& state, const LiquidFill& fill, Rng& rng, tool::ConfigNode
                                   shape_kind_name(shape.kind));
     excluded += shape.volume();
   }
-  const double volume = state.box.volume() - (fill.subtract_colloid_volume ? excluded : 0.0);
+  const Vec3 L = state.box.edges();
+  if (fill.z_max > L.z()) cfg.fail("liquid.z_range", "expected a slab inside the box (0 ... " + std::to_string(L.z()) + " along z)");
+  const double z_min = fill.z_max > 0.0 ? fill.z_min : 0.0, z_max = fill.z_max > 0.0 ? fill.z_max : L.z();
+  const double volume = L.x() * L.y() * (z_max - z_min) - (fill.subtract_colloid_volume ? excluded : 0.0);
   if (!(volume > 0.0)) cfg.fail("box", "expected a box larger than the colloids");
   const auto count = static_cast<std::size_t>(std::llround(fill.density * volume));
   const std::size_t colloids = state.particles.size();
   try {
-    fill_liquid(state, fill.species, count, rng);
+    fill_liquid(state, fill.species, count, rng, z_min, z_max);
   } catch (const PlacementFailure& e) {
     cfg.fail("liquid", std::string("the liquid does not fit: ") + e.what());
   }
@@ -103,6 +114,7 @@ void add_liquid(State& state, const LiquidFill& fill, Rng& rng, tool::ConfigNode
 void place_colloids(State& state, const PlacementRequest& req, Rng& rng) {
   std::size_t total = 0;
   for (const std::size_t n : req.counts) total += n;
+  if (total == 0) return;  // a liquid alone
   if (total != 1) {
     insert_randomly(state, req, rng);
     return;
@@ -129,8 +141,10 @@ State build_configuration(tool::ConfigNode& cfg, const std::optional<State>& exi
   PlacementRequest req;
   req.counts.assign(state.species.size(), 0);
   req.rules.resize(state.species.size());
-  auto entries = cfg.objects("composition");
-  if (entries.empty()) cfg.fail("composition", "expected at least one {\"species\": name, \"count\": n} entry");
+  // A liquid alone (a channel between walls) needs no composition.
+  const bool liquid_alone = cfg.has("liquid") && !cfg.has("composition");
+  auto entries = liquid_alone ? std::vector<tool::ConfigNode>{} : cfg.objects("composition");
+  if (entries.empty() && !liquid_alone) cfg.fail("composition", "expected at least one {\"species\": name, \"count\": n} entry");
   std::vector<std::pair<std::size_t, std::optional<tool::ConfigNode>>> orientation_nodes;
   for (auto& e : entries) {
     const std::string name = e.string("species");

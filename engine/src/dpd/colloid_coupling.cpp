@@ -22,10 +22,9 @@ std::string number(double x) {
 
 ColloidCoupling::ColloidCoupling(const State& state, const std::vector<char>& is_liquid, const DpdProtocol& protocol,
                                  std::uint64_t seed, const std::string& config_file)
-    : forces_(protocol.colloids.value().shell, protocol.time_step, seed) {
+    : forces_(protocol.colloids.value().shell, protocol.time_step, seed), fixed_(protocol.colloids->fixed) {
   classify(state, is_liquid, protocol, config_file);
   check_geometry(state, protocol, config_file);
-  check_time_step(state, protocol, config_file);
 }
 
 void ColloidCoupling::classify(const State& state, const std::vector<char>& is_liquid, const DpdProtocol& protocol,
@@ -94,25 +93,11 @@ void ColloidCoupling::check_geometry(const State& state, const DpdProtocol& prot
     }
 }
 
-void ColloidCoupling::check_time_step(const State& state, const DpdProtocol& protocol, const std::string& config_file) const {
-  if (liquid_.empty()) return;
-  double lightest = INFINITY;
-  for (const std::int32_t i : liquid_)
-    lightest = std::min(lightest, state.species[static_cast<std::size_t>(state.particles.species[static_cast<std::size_t>(i)])].mass);
-  // U''(r) at the surface x = r − Δ = 1, the same for every d, by a central difference of the force.
-  const double h = 1e-6;
-  const double curvature = (forces_.core().force(1.0 - h, 2.0) - forces_.core().force(1.0 + h, 2.0)) / (2.0 * h);
-  const double omega = std::sqrt(curvature / lightest);
-  if (omega * protocol.time_step > 1.0)
-    throw InputError(config_file, "time_step", "expected a time step of at most " + number(1.0 / omega) +
-                                                   " for the colloids' Mie core (its surface frequency is " + number(omega) +
-                                                   "/tau for the liquid mass " + number(lightest) + "; stability needs omega dt <= 1)");
-}
-
 std::vector<BodyInertia> ColloidCoupling::inertia(const SpeciesTable& species) const {
   std::vector<BodyInertia> out;
   for (std::size_t s = 0; s < species.size(); ++s)
-    out.push_back(bodies_[s].sites.size() ? BodyInertia{bodies_[s].mass, bodies_[s].moments} : BodyInertia{species[s].mass, Vec3::Zero()});
+    out.push_back(bodies_[s].sites.size() ? BodyInertia{bodies_[s].mass, bodies_[s].moments, fixed_}
+                                          : BodyInertia{species[s].mass, Vec3::Zero()});
   return out;
 }
 

@@ -33,7 +33,44 @@ DpdProtocol parse_dpd_protocol(tool::ConfigNode& cfg) {
     col.shell.kT = p.liquid.kT;
     col.mass_density = c->positive("mass_density", col.mass_density);
     col.site_spacing = c->positive("site_spacing", col.site_spacing);
+    col.fixed = c->boolean("fixed", false);
     p.colloids = col;
+  }
+  if (auto w = cfg.optional_object("walls")) {
+    w->choice("type", {"flat_mie"});  // the only kind (spec 30 §6); required, so that a new kind is a new name
+    FlatWallParameters walls;
+    walls.height = w->positive("height");
+    const auto gammas = w->numbers("gamma_surface");
+    if (gammas.size() != 2 || gammas[0] < 0 || gammas[1] < 0)
+      w->fail("gamma_surface", "expected [bottom, top], two non-negative surface frictions");
+    walls.gamma_surface = {gammas[0], gammas[1]};
+    const bool friction = gammas[0] > 0 || gammas[1] > 0;
+    walls.shell = w->positive("shell", walls.shell);
+    walls.noise = w->choice("shell_noise", {"vector3d", "along_v"}, "vector3d") == "vector3d" ? SiteLiquidParameters::ShellNoise::Vector3d
+                                                                                             : SiteLiquidParameters::ShellNoise::AlongV;
+    w->reject_unless(friction, "shell", "with gamma_surface [0, 0] (there is no friction shell)");
+    w->reject_unless(friction, "shell_noise", "with gamma_surface [0, 0] (there is no friction shell, hence no noise)");
+    walls.kT = p.liquid.kT;
+    p.walls = walls;
+  }
+  if (auto d = cfg.optional_object("drive")) {
+    DpdProtocol::Drive drive;
+    drive.force = d->vec3("force");
+    drive.z_min = d->number("z_min", drive.z_min);
+    drive.z_max = d->number("z_max", drive.z_max);
+    if (!(drive.z_min < drive.z_max)) d->fail("z_max", "expected z_max above z_min");
+    p.drive = drive;
+  }
+  if (auto pr = cfg.optional_object("profiles")) {
+    DpdProtocol::Profiles prof;
+    if (pr->has("z_bin")) prof.z_bin = pr->positive("z_bin");
+    if (pr->has("radial_bin")) prof.radial_bin = pr->positive("radial_bin");
+    if (prof.z_bin == 0.0 && prof.radial_bin == 0.0) pr->fail("", "expected z_bin (slab profiles along z), radial_bin (around the colloid) or both");
+    pr->reject_unless(prof.radial_bin > 0.0, "radial_max", "without radial_bin");
+    pr->reject_unless(prof.radial_bin > 0.0, "midplane_half_width", "without radial_bin");
+    if (pr->has("radial_max")) prof.radial_max = pr->positive("radial_max");
+    prof.midplane_half_width = pr->positive("midplane_half_width", prof.midplane_half_width);
+    p.profiles = prof;
   }
   if (cfg.has("frame_species")) {
     p.frame_species = cfg.strings("frame_species");

@@ -18,6 +18,12 @@ std::uint64_t replica_seed(std::uint64_t seed, std::uint64_t replica) { return K
 
 std::vector<double> six(const Mat3& m) { return {m(0, 0), m(1, 1), m(2, 2), m(0, 1), m(0, 2), m(1, 2)}; }
 
+nlohmann::json vec_json(const Vec3& v) { return std::vector<double>{v.x(), v.y(), v.z()}; }
+Vec3 vec_from(const nlohmann::json& j) {
+  const auto v = j.get<std::vector<double>>();
+  return Vec3(v.at(0), v.at(1), v.at(2));
+}
+
 nlohmann::json mat_json(const Mat3& m) { return std::vector<double>(m.data(), m.data() + 9); }
 Mat3 mat_from(const nlohmann::json& j) {
   const auto v = j.get<std::vector<double>>();
@@ -32,6 +38,8 @@ nlohmann::json DpdRowSums::to_json() const {
           {"potential_energy", potential_energy},
           {"colloid_translational", colloid_translational},
           {"total_energy", total_energy},
+          {"wall_force", {vec_json(wall_force[0]), vec_json(wall_force[1])}},
+          {"z_count", z_count}, {"z_vx", z_vx}, {"r_count", r_count}, {"r_mid_count", r_mid_count}, {"r_mid_vx", r_mid_vx},
           {"colloid_rotational", colloid_rotational},
           {"kinetic", mat_json(kinetic)},
           {"virial", {mat_json(virial[0]), mat_json(virial[1]), mat_json(virial[2])}}};
@@ -44,6 +52,10 @@ DpdRowSums DpdRowSums::from_json(const nlohmann::json& j) {
   r.potential_energy = j.at("potential_energy").get<double>();
   r.colloid_translational = j.at("colloid_translational").get<double>();
   r.total_energy = j.at("total_energy").get<double>();
+  for (std::size_t w = 0; w < 2; ++w) r.wall_force[w] = vec_from(j.at("wall_force")[w]);
+  for (auto [key, v] : {std::pair{"z_count", &r.z_count}, {"z_vx", &r.z_vx}, {"r_count", &r.r_count}, {"r_mid_count", &r.r_mid_count},
+                        {"r_mid_vx", &r.r_mid_vx}})
+    *v = j.at(key).get<std::vector<double>>();
   r.colloid_rotational = j.at("colloid_rotational").get<double>();
   r.kinetic = mat_from(j.at("kinetic"));
   for (int k = 0; k < 3; ++k) r.virial[static_cast<std::size_t>(k)] = mat_from(j.at("virial")[static_cast<std::size_t>(k)]);
@@ -141,6 +153,19 @@ DpdRunner::DpdRunner(State& state, const DpdProtocol& protocol, const std::strin
     // The outputs' species table records the masses the run used (density matched, spec 30 §3).
     for (std::size_t s = 0; s < state_.species.size(); ++s) state_.species[s].mass = inertia_[s].mass;
   }
+  if (colloids_) {
+    liquid_ = colloids_->liquid();
+  } else {
+    liquid_.resize(state_.particles.size());
+    for (std::size_t i = 0; i < liquid_.size(); ++i) liquid_[i] = static_cast<std::int32_t>(i);
+  }
+  if (protocol_.walls) {
+    check_walls(config_file);
+    walls_ = std::make_unique<FlatWalls>(*protocol_.walls, protocol_.time_step, seed);
+  }
+  check_core_time_step(config_file);
+  if (protocol_.profiles && protocol_.profiles->radial_bin > 0.0 && !colloids_)
+    throw InputError(config_file, "profiles.radial_bin", "expected colloids: the radial profiles are around the first colloid");
   integrator_ = std::make_unique<RigidBodyNve>(protocol_.time_step, inertia_, [this](const State& s, BodyForces& out) { forces(s, out); });
   select_frame_particles(config_file);
 
@@ -204,11 +229,59 @@ const State& DpdRunner::frame_state(const State& full) {
 void DpdRunner::forces(const State& s, BodyForces& out) {
   (*pairs_)(s, out);
   if (colloids_) (*colloids_)(s, out);
+  if (walls_) walls_->add(s, liquid_, out);
+  if (const auto& drive = protocol_.drive) {
+    const double lz = s.box.edges().z();
+    for (const std::int32_t index : liquid_) {
+      const auto i = static_cast<std::size_t>(index);
+      const double z = s.particles.z[i] + lz * s.particles.iz[i];
+      if (z >= drive->z_min && z < drive->z_max) out.force[i] += drive->force;
+    }
+  }
+}
+
+void DpdRunner::check_walls(const std::string& config_file) const {
+  const FlatWallParameters& w = *protocol_.walls;
+  const double lz = state_.box.edges().z();
+  if (colloids_) throw InputError(config_file, "walls", "expected no colloids with walls (spec 30 has no colloid-wall interaction)");
+  if (lz < w.height + protocol_.liquid.cutoff)
+    throw InputError(config_file, "walls.height", "expected the box (" + std::to_string(lz) + " along z) to be taller than the channel by at "
+                                                  "least the cut-off, so that no DPD pair reaches across the periodic boundary in z");
+  // The liquid must start inside the channel: the walls' core is 1 kT at the planes and 2.6×10³ kT
+  // 0.1 beyond them, so a particle of a running channel (a checkpoint) is never further out.
+  constexpr double kPenetration = 0.1;
+  for (const std::int32_t index : liquid_) {
+    const auto i = static_cast<std::size_t>(index);
+    const double z = state_.particles.z[i] + lz * state_.particles.iz[i];
+    if (z < -kPenetration || z > w.height + kPenetration)
+      throw InputError("", "", "liquid particle " + std::to_string(state_.particles.id[i]) + " is at z = " + std::to_string(z) +
+                                   ", outside the channel 0 <= z <= " + std::to_string(w.height) + " between the walls (by more than 0.1)");
+  }
+}
+
+void DpdRunner::check_core_time_step(const std::string& config_file) const {
+  if ((!colloids_ && !walls_) || liquid_.empty()) return;
+  double lightest = INFINITY;
+  for (const std::int32_t i : liquid_) lightest = std::min(lightest, inertia_[static_cast<std::size_t>(state_.particles.species[static_cast<std::size_t>(i)])].mass);
+  // ω = √(U''/m) at the core's surface (x = r − Δ = 1, the same for every d), U'' by a central
+  // difference of the force. Velocity Verlet's linear limit is ω Δt < 2; ω Δt ≤ 1 keeps a margin for
+  // the core's stiffening inside the surface.
+  const ShiftedMieCore core;
+  const double h = 1e-6;
+  const double curvature = (core.force(1.0 - h, 2.0) - core.force(1.0 + h, 2.0)) / (2.0 * h);
+  const double omega = std::sqrt(curvature / lightest);
+  if (omega * protocol_.time_step > 1.0) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "expected a time step of at most %.6g for the Mie cores of the %s (surface frequency %.6g/tau for "
+                  "the liquid mass %.6g; stability needs omega dt <= 1)", 1.0 / omega, colloids_ ? "colloids" : "walls", omega, lightest);
+    throw InputError(config_file, "time_step", buf);
+  }
 }
 
 void DpdRunner::set_noise_step(std::uint64_t step) {
   pairs_->set_noise_step(step);
   if (colloids_) colloids_->set_noise_step(step);
+  if (walls_) walls_->set_noise_step(step);
 }
 
 double DpdRunner::advance() {
@@ -239,6 +312,9 @@ void DpdRunner::add_to_row() {
     energy += colloids_->last_sums().energy;
     for (std::size_t part = 0; part < 3; ++part) virial[part] += colloids_->last_sums().virial[part];
   }
+  if (walls_)
+    for (std::size_t w = 0; w < 2; ++w) row_.wall_force[w] += walls_->last_sums().force_on_wall[w];
+  if (protocol_.profiles) add_profiles();
   row_.steps += 1;
   row_.kinetic += kinetic;
   row_.kinetic_temperature += liquid_kinetic / (3.0 * (n_liquid - 1.0));
@@ -248,6 +324,62 @@ void DpdRunner::add_to_row() {
   if (!green_kubo_) return;
   const double volume = state_.box.volume();
   green_kubo_->add(production_.step() + 1, {kinetic / volume, virial[0] / volume, virial[1] / volume, virial[2] / volume}, *out_);
+}
+
+void DpdRunner::add_profiles() {
+  const DpdProtocol::Profiles& prof = *protocol_.profiles;
+  const Particles& p = state_.particles;
+  if (prof.z_bin > 0.0) {
+    const std::size_t bins = static_cast<std::size_t>(std::ceil(state_.box.edges().z() / prof.z_bin));
+    row_.z_count.resize(bins, 0.0);
+    row_.z_vx.resize(bins, 0.0);
+    for (const std::int32_t index : liquid_) {
+      const auto i = static_cast<std::size_t>(index);
+      const auto b = std::min(bins - 1, static_cast<std::size_t>(p.z[i] / prof.z_bin));
+      row_.z_count[b] += 1.0;
+      row_.z_vx[b] += p.vx[i];
+    }
+  }
+  if (prof.radial_bin > 0.0) {
+    const double r_max = radial_max();
+    const std::size_t bins = static_cast<std::size_t>(std::ceil(r_max / prof.radial_bin - 1e-9));
+    for (auto* v : {&row_.r_count, &row_.r_mid_count, &row_.r_mid_vx}) v->resize(bins, 0.0);
+    const Vec3 centre = p.position(static_cast<std::size_t>(colloids_->colloids().front()));
+    for (const std::int32_t index : liquid_) {
+      const auto i = static_cast<std::size_t>(index);
+      const Vec3 d = state_.box.min_image(p.position(i) - centre);
+      const double r = d.norm();
+      if (r >= r_max) continue;
+      const auto b = static_cast<std::size_t>(r / prof.radial_bin);
+      row_.r_count[b] += 1.0;
+      if (std::abs(d.x()) < prof.midplane_half_width) {
+        row_.r_mid_count[b] += 1.0;
+        row_.r_mid_vx[b] += p.vx[i];
+      }
+    }
+  }
+}
+
+double DpdRunner::radial_max() const {
+  const auto& prof = *protocol_.profiles;
+  return prof.radial_max > 0.0 ? prof.radial_max : 0.5 * state_.box.shortest_edge();
+}
+
+void DpdRunner::write_profiles(io::H5mdWriter& out, std::int64_t step, double t, double steps) {
+  auto mean = [&](const std::vector<double>& v) {
+    std::vector<double> m(v.size());
+    for (std::size_t k = 0; k < v.size(); ++k) m[k] = v[k] / steps;
+    return m;
+  };
+  if (!row_.z_count.empty()) {
+    out.append_observable("profile_z_count", step, t, mean(row_.z_count));
+    out.append_observable("profile_z_vx_sum", step, t, mean(row_.z_vx));
+  }
+  if (!row_.r_count.empty()) {
+    out.append_observable("profile_r_count", step, t, mean(row_.r_count));
+    out.append_observable("profile_r_midplane_count", step, t, mean(row_.r_mid_count));
+    out.append_observable("profile_r_midplane_vx_sum", step, t, mean(row_.r_mid_vx));
+  }
 }
 
 void DpdRunner::observe(io::H5mdWriter& out, std::int64_t step, double t) {
@@ -271,6 +403,13 @@ void DpdRunner::observe(io::H5mdWriter& out, std::int64_t step, double t) {
     if (const int f = colloids_->rotational_degrees(state_); f > 0)
       out.append_observable("colloid_temperature_rotational", step, t, row_.colloid_rotational / (f * steps));
   }
+  if (walls_) {
+    for (std::size_t w = 0; w < 2; ++w) {
+      const Vec3 f = row_.wall_force[w] / steps;
+      out.append_observable(w == 0 ? "wall_force_bottom" : "wall_force_top", step, t, std::vector<double>{f.x(), f.y(), f.z()});
+    }
+  }
+  if (protocol_.profiles) write_profiles(out, step, t, steps);
   Vec3 momentum = Vec3::Zero();
   const Particles& p = state_.particles;
   for (std::size_t i = 0; i < p.size(); ++i) momentum += inertia_[static_cast<std::size_t>(p.species[i])].mass * p.velocity(i);
@@ -294,6 +433,33 @@ void DpdRunner::observe(io::H5mdWriter& out, std::int64_t step, double t) {
   attr("pressure_tensor_dissipative", "kT/r_c^3", "sum over pairs of r_ij F^D_ij / V (half-step velocities)" + tensor);
   attr("pressure_tensor_random", "kT/r_c^3", "sum over pairs of r_ij F^R_ij / V" + tensor);
   attr("potential_energy", "kT", "potential energy per particle: sum of a r_c (1 - r/r_c)^2 / 2 over liquid pairs plus the colloid cores, mean over the row's steps");
+  if (walls_) {
+    attr("wall_force_bottom", "kT/r_c", "force of the liquid on the wall at z = 0 (x, y, z), mean over the row's steps");
+    attr("wall_force_top", "kT/r_c", "force of the liquid on the wall at z = height (x, y, z), mean over the row's steps");
+  }
+  if (protocol_.profiles) {
+    const auto& prof = *protocol_.profiles;
+    const Vec3 L = state_.box.edges();
+    if (prof.z_bin > 0.0) {
+      const std::string slabs = "per slab [k w, (k + 1) w) of z, w = z_bin = " + std::to_string(prof.z_bin) + ", area " +
+                                std::to_string(L.x() * L.y()) + ", mean over the row's steps";
+      attr("profile_z_count", "1", "number of liquid particles " + slabs);
+      attr("profile_z_vx_sum", "r_c/tau", "sum of v_x of the liquid particles " + slabs);
+      for (const char* name : {"profile_z_count", "profile_z_vx_sum"}) out.set_observable_attribute(name, "bin_width", std::to_string(prof.z_bin));
+    }
+    if (prof.radial_bin > 0.0) {
+      const std::string shells = "per shell [k w, (k + 1) w) of the distance r from the first colloid's centre, w = radial_bin = " +
+                                 std::to_string(prof.radial_bin) + ", mean over the row's steps";
+      const std::string mid = " with |x - x_c| < " + std::to_string(prof.midplane_half_width) + " (the mid-plane slab)";
+      attr("profile_r_count", "1", "number of liquid particles " + shells);
+      attr("profile_r_midplane_count", "1", "number of liquid particles" + mid + ", " + shells);
+      attr("profile_r_midplane_vx_sum", "r_c/tau", "sum of v_x of the liquid particles" + mid + ", " + shells);
+      for (const char* name : {"profile_r_count", "profile_r_midplane_count", "profile_r_midplane_vx_sum"}) {
+        out.set_observable_attribute(name, "bin_width", std::to_string(prof.radial_bin));
+        out.set_observable_attribute(name, "midplane_half_width", std::to_string(prof.midplane_half_width));
+      }
+    }
+  }
   attr("total_energy", "kT", "(kinetic + rotational + potential energy) per particle, full-step velocities, mean over the row's steps; "
                              "conserved only without thermostat (gamma = 0, gamma_surface = 0)");
   attr("momentum", "m r_c/tau", "total momentum sum m v at the row's last step (x, y, z)");

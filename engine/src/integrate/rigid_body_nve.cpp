@@ -151,6 +151,7 @@ double RigidBodyNve::step(State& state) {
 #pragma omp parallel for schedule(static) if (n >= kParallelBodies)
   for (std::size_t i = 0; i < n; ++i) {
     const BodyInertia& b = inertia_[static_cast<std::size_t>(p.species[i])];
+    if (b.fixed) continue;
     const Vec3 v = p.velocity(i) + (half / b.mass) * forces_.force[i];
     Vec3 r = p.position(i) + dt_ * v;
     Int3 image = p.image(i);
@@ -171,6 +172,7 @@ double RigidBodyNve::step(State& state) {
 #pragma omp parallel for schedule(static) if (n >= kParallelBodies)
   for (std::size_t i = 0; i < n; ++i) {
     const BodyInertia& b = inertia_[static_cast<std::size_t>(p.species[i])];
+    if (b.fixed) continue;
     p.set_velocity(i, p.velocity(i) + (half / b.mass) * forces_.force[i]);
     if (!angular) continue;
     p.set_angular_momentum(i, without_frozen_axes(b.principal_moments, p.orientation(i),

@@ -60,7 +60,8 @@ bool inside_body(const State& state, std::size_t i, const Vec3& r);
 
 /// Appends `count` point particles of species `liquid` (a DPD liquid, spec 30 §5) at uniformly
 /// random positions outside the bodies of the particles already present: a position inside one is
-/// drawn again. PlacementFailure when a particle needs more than max_attempts draws.
-void fill_liquid(State& state, int liquid, std::size_t count, Rng& rng, std::size_t max_attempts = 10000);
+/// drawn again; z is drawn in [z_min, z_max). PlacementFailure when a particle needs more than
+/// max_attempts draws.
+void fill_liquid(State& state, int liquid, std::size_t count, Rng& rng, double z_min, double z_max, std::size_t max_attempts = 10000);
 
 }  // namespace anisodyn

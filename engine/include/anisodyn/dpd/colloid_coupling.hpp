@@ -15,10 +15,8 @@
 //     or spherocylinder;
 //   - a colloid whose extent with its interaction reach (length + 2 (d/2 + δ) along its axis) does
 //     not fit in the shortest box edge: a liquid particle would then see two images of it;
-//   - two colloids whose cores overlap (site distance below the mean of their diameters);
-//   - a time step beyond the stability limit of the Mie core: ω Δt > 1 with ω = √(U''(d/2)/m) the
-//     core's frequency at the surface for the lightest liquid particle (velocity Verlet's linear
-//     limit is ω Δt < 2; the factor 2 keeps a margin for the stiffer core inside the surface).
+//   - two colloids whose cores overlap (site distance below the mean of their diameters).
+// (The time step's limit from the Mie core is the runner's check: walls have the same core.)
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -64,13 +62,13 @@ class ColloidCoupling {
   Vec3 angular_velocity(const State& s, std::size_t i) const;
   void classify(const State& state, const std::vector<char>& is_liquid, const DpdProtocol& protocol, const std::string& config_file);
   void check_geometry(const State& state, const DpdProtocol& protocol, const std::string& config_file) const;
-  void check_time_step(const State& state, const DpdProtocol& protocol, const std::string& config_file) const;
   void gather_liquid(const Particles& p);
   void place_sites(const State& s);
 
   std::vector<ColloidBody> bodies_;
   std::vector<std::int32_t> liquid_, colloids_;
   SiteLiquidForces forces_;
+  bool fixed_;  // the colloids are held in place
   // Scratch kept between evaluations.
   std::vector<double> lx_, ly_, lz_, lvx_, lvy_, lvz_, f_liquid_;
   std::vector<std::int64_t> lid_;

@@ -36,6 +36,10 @@ struct DpdRowSums {
   double kinetic_temperature = 0.0, potential_energy = 0.0;
   double colloid_translational = 0.0, colloid_rotational = 0.0;  // Σ M V², Σ L·ω
   double total_energy = 0.0;  // per particle
+  std::array<Vec3, 2> wall_force{Vec3::Zero(), Vec3::Zero()};  // Σ over steps of the liquid's force on each wall
+  // Profiles (DpdProtocol::Profiles), Σ over steps: per z slab the number and Σ v_x; per shell around
+  // the colloid the number, and the number and Σ v_x in its mid-plane slab.
+  std::vector<double> z_count, z_vx, r_count, r_mid_count, r_mid_vx;
   Mat3 kinetic = Mat3::Zero();                // Σ m v vᵀ
   std::array<Mat3, 3> virial{Mat3::Zero(), Mat3::Zero(), Mat3::Zero()};  // Σ r_ij F_ijᵀ by part
 
@@ -66,7 +70,16 @@ class DpdRunner : public run::FieldlessClient {
   /// The state the frames show: every particle, or those of frame_species.
   const State& frame_state(const State& full) override;
   void select_frame_particles(const std::string& config_file);
-  /// The DPD forces, and the colloids' with the liquid.
+  /// Walls and drive: their checks against the input state.
+  void check_walls(const std::string& config_file) const;
+  /// The Mie cores' (colloids', walls') limit on the time step.
+  void check_core_time_step(const std::string& config_file) const;
+  /// Adds this step's profiles to the row.
+  void add_profiles();
+  void write_profiles(io::H5mdWriter& out, std::int64_t step, double time, double steps);
+  /// The radial profiles' reach: radial_max, or half the shortest box edge.
+  double radial_max() const;
+  /// The DPD forces, the colloids' with the liquid, the walls' and the drive.
   void forces(const State& s, BodyForces& out);
   void set_noise_step(std::uint64_t step);
   /// A fresh run's start: the velocities (the input's, or Maxwell–Boltzmann) and the first forces.
@@ -79,6 +92,8 @@ class DpdRunner : public run::FieldlessClient {
   DpdProtocol protocol_;
   std::unique_ptr<DpdForceField> pairs_;
   std::unique_ptr<ColloidCoupling> colloids_;  // null: a pure liquid
+  std::unique_ptr<FlatWalls> walls_;           // null: periodic in z
+  std::vector<std::int32_t> liquid_;           // the liquid particles' indices
   std::vector<BodyInertia> inertia_;           // per species
   std::vector<std::size_t> frame_particles_;   // empty: every particle
   State frame_subset_;

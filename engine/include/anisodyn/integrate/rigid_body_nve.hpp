@@ -48,6 +48,9 @@ namespace anisodyn {
 struct BodyInertia {
   double mass;
   Vec3 principal_moments;
+  /// Held in place: neither kicked nor moved (a colloid fixed in a flow, spec 30 §8); its velocity
+  /// and angular momentum stay as they are (zero for a body at rest).
+  bool fixed = false;
 };
 
 /// Called at the end of every step with the step length: where a thermostat acts on the velocities

@@ -2,7 +2,7 @@
 """Writes the C4 and C5 manifests (spec 60: dpd_sphere_diffusion, dpd_rod_diffusion and their
 smokes) from Table S1 and the Tirado-Garcia de la Torre equivalent diameters (spec 30 §10), so that
 the per-system x and y scales of the reduced plots follow from the formulas, not by hand.
-Run from anywhere: scripts/make_dpd_diffusion_manifests.py"""
+Also C2 and C3 (dpd_slip_length, dpd_flow_fixed_sphere). Run from anywhere: scripts/make_dpd_manifests.py"""
 import json
 import math
 import os
@@ -145,3 +145,116 @@ for name, m in (("dpd_sphere_diffusion-smoke", sphere_manifest(True)), ("dpd_sph
     with open(os.path.join(OUT, f"{name}.json"), "w") as f:
         json.dump(m, f, indent=2)
         f.write("\n")
+
+
+# --- C2 (slip length, Couette) and C3 (fixed sphere in flow): spec 30 §6, §8 -------------------------
+def couette_manifest(smoke):
+    gammas = [0, 10 / 3, 30] if smoke else [0, 1, 2, 10 / 3, 5, 20 / 3, 10]
+    forces = [0.05] if smoke else [0.001, 0.0025, 0.005, 0.01, 0.025, 0.05]
+    t_eq, t_avg = (100, 100) if smoke else (2000, 20000)
+    walls = {"type": "flat_mie", "height": 8, "gamma_surface": ["${grid.gamma_ls0}", 0]}
+    m = {
+        "study": "dpd_slip_length" + ("-smoke" if smoke else ""),
+        "description": ("C2 smoke: " if smoke else "Study C2 (spec 60, spec 30 §6; Liu & Widmer-Cooper): ")
+        + "Couette slip length of the DPD liquid (rho = 3, a = 25, gamma = 100, dt = 0.005) between flat Mie(50,49) walls at z = 0 "
+          "(friction shell delta = 0.5 with surface friction gamma_ls0, vector3d noise) and z = 8 (perfect slip: Mie only); box 8 x 8 x 9.5 "
+          "(periodic in x, y; 1.5 of empty space above the top wall so that no DPD pair crosses z), N = 3 x 8^3 = 1536 placed uniformly "
+          "in 0 <= z <= 8; a force f x on every particle with z > 6; "
+          f"{t_eq} tau to steady state, then {t_avg} tau averaged (window from {t_eq}); v_x(z) in slabs of 0.1, "
+          "slip length b = a/G of the line v_x = G z + a over z = 1.5 ... 5 (b > 0: slip), apparent shear rate v_top/8 with v_top "
+          "the mean v_x in 7 <= z < 8; jackknife errors over 10 blocks of the window. "
+          + ("gamma_ls0 = 0 (perfect slip at both walls: no steady state, the liquid accelerates, so b is large and poorly defined), 10/3 and 30 (added to the spec smoke grid: b changes sign between 10 and 30 at this drive), f = 0.05 (five times the spec smoke's 0.01, whose 100 tau average leaves b uncertain by 0.4-1 r_c)."
+             if smoke else "Grid of spec 30 §6 (Decision)."),
+        "replicas": 1,
+        "grid": {"gamma_ls0": gammas, "f": forces},
+        "stages": [
+            {"name": "config", "tool": "config", "replicate": False, "params": {
+                "seed": 51, "placement": "colloids_in_liquid",
+                "species": [LIQ], "liquid": {"species": "liquid", "density": 3, "z_range": [0, 8]}, "box": {"edges": [8, 8, 9.5]}}},
+            {"name": "dpd", "tool": "dpd", "inputs": ["config"], "params": {
+                "seed": 52, "time_step": 0.005, "time": t_eq + t_avg, "observe_every": 1000,
+                "liquid": {"a": 25, "gamma": 100}, "walls": walls,
+                "drive": {"force": ["${grid.f}", 0, 0], "z_min": 6}, "profiles": {"z_bin": 0.1}}},
+            {"name": "flow", "tool": "flow", "inputs": ["dpd"], "params": {"window": {"from": t_eq}, "slip": {}}}],
+        "report": {
+            "title": "C2" + (" smoke" if smoke else "") + ": slip length of the friction-shell wall",
+            "scalars": [{"stage": "flow", "names": ["slip_length", "shear_gradient", "v_top", "shear_rate_apparent"],
+                         "caption": "slip length b (r_c), velocity gradient G (1/tau), v_top (r_c/tau) and the apparent shear rate v_top/8 (1/tau)"}],
+            "plots": [
+                {"name": "slip_vs_gamma", "stage": "flow", "scalar": "slip_length", "x": "gamma_ls0", "series": "f",
+                 "xlabel": "gamma_ls0", "ylabel": "b / r_c", "title": "Slip length against the wall's surface friction",
+                 "theory": [{"kind": "constant", "value": 0, "label": "stick (b = 0)"}]},
+                {"name": "profiles", "stage": "flow", "table": "profile_z", "x": "z", "y": ["v_x"], "xlabel": "z / r_c",
+                 "ylabel": "v_x / (r_c/tau)", "title": "Velocity profiles"},
+                {"name": "density", "stage": "flow", "table": "profile_z", "x": "z", "y": ["density"], "xlabel": "z / r_c",
+                 "ylabel": "rho / r_c^-3", "title": "Density profiles"}]}}
+    if not smoke:
+        m["report"]["plots"].insert(1, {"name": "slip_vs_force", "stage": "flow", "scalar": "slip_length", "x": "f", "series": "gamma_ls0",
+                                        "log": "x", "xlabel": "f (drive per particle; the apparent shear rate is in the scalars)",
+                                        "ylabel": "b / r_c", "title": "Slip length against the drive"})
+    return m
+
+
+def fixed_sphere_manifest(smoke):
+    gammas = [10 / 3] if smoke else [0, 10 / 3, 20 / 3]
+    t_eq, t_avg = (100, 100) if smoke else (1000, 10000)
+    force = 0.002 if smoke else 0.0011
+    return {
+        "study": "dpd_flow_fixed_sphere" + ("-smoke" if smoke else ""),
+        "description": ("C3 smoke: " if smoke else "Study C3 (spec 60, spec 30 §8; Liu & Widmer-Cooper SI): ")
+        + "a d = 2 sphere held fixed at the centre of an L_box = 8 box of DPD liquid (rho = 3, a = 25, gamma = 100, dt = 0.005; "
+          "N_liquid = round(3 (512 - 4 pi/3)) placed uniformly outside the sphere; Mie(50,49) core, friction shell delta = 0.5 with "
+          f"surface friction gamma_ls0, vector3d noise), a force f = {force} x on every liquid particle ("
+        + ("the smoke drives twice as hard as the study, for signal; " if smoke else "")
+        + "Decision: the smoke's mean flow, 0.073 at f = 0.002 and gamma_ls0 = 10/3, scaled to the apparent shear rate v/4 = 0.01 that "
+          "spec 30 §8 asks for gives f = 0.0011; the measured v_x_mean/4 is reported); "
+          f"{t_eq} tau to steady state, then {t_avg} tau averaged; the radial density rho(r) around the sphere and v_x in its mid-plane "
+          "slab |x - x_c| < 0.25, both in bins of 0.1; jackknife errors over 10 blocks of the window.",
+        "replicas": 1,
+        "grid": {"gamma_ls0": gammas},
+        "stages": [
+            {"name": "config", "tool": "config", "replicate": False, "params": {
+                "seed": 61, "placement": "colloids_in_liquid",
+                "species": [{"name": "sphere", "shape": {"type": "sphere", "diameter": 2.0}}, LIQ],
+                "composition": [{"species": "sphere", "count": 1}],
+                "liquid": {"species": "liquid", "density": 3}, "box": {"edges": [8, 8, 8]}}},
+            {"name": "dpd", "tool": "dpd", "inputs": ["config"], "params": {
+                "seed": 62, "time_step": 0.005, "time": t_eq + t_avg, "observe_every": 1000,
+                "liquid": {"a": 25, "gamma": 100},
+                "colloids": {"species": ["sphere"], "gamma_surface": "${grid.gamma_ls0}", "fixed": True},
+                "drive": {"force": [force, 0, 0]}, "profiles": {"z_bin": 0.1, "radial_bin": 0.1, "radial_max": 4}}},
+            {"name": "flow", "tool": "flow", "inputs": ["dpd"], "params": {"window": {"from": t_eq}}}],
+        "report": {
+            "title": "C3" + (" smoke" if smoke else "") + ": liquid around a sphere held in a flow",
+            "scalars": [{"stage": "flow", "names": ["v_x_mean"], "caption": "mean liquid velocity (r_c/tau); the apparent shear rate is v_x_mean/4"}],
+            "plots": [
+                {"name": "density_r", "stage": "flow", "table": "profile_r", "x": "r", "y": ["density"], "xlabel": "r / r_c",
+                 "ylabel": "rho(r) / r_c^-3", "title": "Liquid density around the fixed sphere",
+                 "theory": [{"kind": "constant", "value": 3, "label": "bulk density 3"}]},
+                {"name": "velocity_r", "stage": "flow", "table": "profile_r", "x": "r", "y": ["v_x"], "xlabel": "r / r_c",
+                 "ylabel": "v_x / (r_c/tau) in the mid-plane", "title": "Flow velocity around the fixed sphere (mid-plane slab)"}]}}
+
+
+for name, m in (("dpd_slip_length-smoke", couette_manifest(True)), ("dpd_slip_length", couette_manifest(False)),
+                ("dpd_flow_fixed_sphere-smoke", fixed_sphere_manifest(True)), ("dpd_flow_fixed_sphere", fixed_sphere_manifest(False))):
+    with open(os.path.join(OUT, f"{name}.json"), "w") as f:
+        json.dump(m, f, indent=2)
+        f.write("\n")
+
+
+# A validation variant of C2 (docs/validation.md): the sign change of b, resolved at one drive.
+def couette_validation():
+    m = couette_manifest(False)
+    m["study"] = "validation_dpd_slip_length_f0.05"
+    m["grid"] = {"gamma_ls0": [0, 1, 2, 10 / 3, 5, 20 / 3, 10, 30], "f": [0.05]}
+    m["stages"][1]["params"]["time"] = 2000
+    m["stages"][2]["params"]["window"] = {"from": 200}
+    m["description"] = ("C2 at one drive, f = 0.05, for the sign change of the slip length: gamma_ls0 in {0, 1, 2, 10/3, 5, 20/3, 10, 30}, "
+                        "2000 tau per point, the last 1800 tau averaged. " + m["description"].split(": ", 1)[1])
+    m["report"]["plots"] = [p for p in m["report"]["plots"] if p["name"] != "slip_vs_force"]
+    return m
+
+
+with open(os.path.join(OUT, "validation", "dpd_slip_length_f0.05.json"), "w") as f:
+    json.dump(couette_validation(), f, indent=2)
+    f.write("\n")

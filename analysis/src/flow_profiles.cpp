@@ -1,0 +1,178 @@
+#include "anisodyn/analysis/flow_profiles.hpp"
+
+#include <cmath>
+#include <functional>
+#include <numbers>
+
+#include "anisodyn/core/error.hpp"
+#include "anisodyn/io/h5md.hpp"
+
+namespace anisodyn::analysis {
+
+namespace {
+
+double bin_width(const io::H5mdReader& r, const std::string& name) {
+  const auto text = r.observable_attribute(name, "bin_width");
+  if (!text) throw InputError(r.path(), "/observables/" + name + "@bin_width", "expected the attribute bin_width");
+  return std::stod(*text);
+}
+
+/// Adds rows [begin, end) of an observable to `sum` (sized to its width).
+void add_rows(const io::H5mdReader::Series& s, std::size_t begin, std::size_t end, std::vector<double>& sum) {
+  sum.resize(s.width, 0.0);
+  for (std::size_t row = begin; row < end; ++row)
+    for (std::size_t k = 0; k < s.width; ++k) sum[k] += s.value[row * s.width + k];
+}
+
+ProfileSums total(const std::vector<ProfileSums>& samples, std::size_t leave_out) {
+  ProfileSums t;
+  for (std::size_t s = 0; s < samples.size(); ++s) {
+    if (s == leave_out) continue;
+    const ProfileSums& x = samples[s];
+    t.rows += x.rows;
+    auto add = [](std::vector<double>& a, const std::vector<double>& b) {
+      a.resize(b.size(), 0.0);
+      for (std::size_t k = 0; k < b.size(); ++k) a[k] += b[k];
+    };
+    add(t.z_count, x.z_count), add(t.z_vx, x.z_vx), add(t.r_count, x.r_count), add(t.r_mid_count, x.r_mid_count), add(t.r_mid_vx, x.r_mid_vx);
+  }
+  return t;
+}
+
+double ratio(double a, double b) { return b > 0.0 ? a / b : NAN; }
+
+/// Everything the result reports, as one vector, from pooled sums (so that the jackknife treats all alike).
+struct Estimates {
+  std::vector<double> density_z, vx_z, density_r, vx_r;
+  double slip = NAN, gradient = NAN, v_top = NAN, shear_rate = NAN, v_mean = NAN;
+  std::size_t fit_bins = 0;
+};
+
+Estimates estimate(const FlowGeometry& g, const ProfileSums& t, const std::optional<SlipFitSettings>& slip) {
+  Estimates e;
+  const double rows = static_cast<double>(t.rows);
+  for (std::size_t k = 0; k < t.z_count.size(); ++k) {
+    e.density_z.push_back(t.z_count[k] / rows / (g.area * g.z_bin));
+    e.vx_z.push_back(ratio(t.z_vx[k], t.z_count[k]));
+  }
+  for (std::size_t k = 0; k < t.r_count.size(); ++k) {
+    const double a = static_cast<double>(k) * g.r_bin, b = a + g.r_bin;
+    e.density_r.push_back(t.r_count[k] / rows / (4.0 * std::numbers::pi / 3.0 * (b * b * b - a * a * a)));
+    e.vx_r.push_back(ratio(t.r_mid_vx[k], t.r_mid_count[k]));
+  }
+  double all_v = 0.0, all_n = 0.0;
+  for (std::size_t k = 0; k < t.z_count.size(); ++k) all_v += t.z_vx[k], all_n += t.z_count[k];
+  e.v_mean = ratio(all_v, all_n);
+  if (!slip || t.z_count.empty()) return e;
+  double sz = 0, sv = 0, szz = 0, szv = 0, n = 0, top_v = 0, top_n = 0;
+  for (std::size_t k = 0; k < t.z_count.size(); ++k) {
+    const double z = (static_cast<double>(k) + 0.5) * g.z_bin;
+    if (z >= slip->fit_from && z <= slip->fit_to && std::isfinite(e.vx_z[k])) {
+      sz += z, sv += e.vx_z[k], szz += z * z, szv += z * e.vx_z[k], n += 1;
+    }
+    if (z >= slip->top_from && z < slip->top_to) top_v += t.z_vx[k], top_n += t.z_count[k];
+  }
+  e.fit_bins = static_cast<std::size_t>(n);
+  if (n >= 2) {
+    e.gradient = (n * szv - sz * sv) / (n * szz - sz * sz);
+    const double intercept = (sv - e.gradient * sz) / n;
+    e.slip = intercept / e.gradient;
+  }
+  e.v_top = ratio(top_v, top_n);
+  e.shear_rate = e.v_top / slip->height;
+  return e;
+}
+
+/// Jackknife standard error of x over the leave-one-out values x_s (n samples).
+double jackknife(const std::vector<double>& x_s) {
+  const double n = static_cast<double>(x_s.size());
+  if (n < 2) return NAN;
+  double mean = 0.0;
+  for (double v : x_s) mean += v / n;
+  double sum = 0.0;
+  for (double v : x_s) sum += (v - mean) * (v - mean);
+  return std::sqrt((n - 1.0) / n * sum);
+}
+
+}  // namespace
+
+RunProfiles read_profiles(const std::string& path, std::size_t blocks, const std::function<bool(double)>& keep) {
+  const io::H5mdReader r(path);
+  RunProfiles out;
+  const bool slabs = r.has_observable("profile_z_count"), shells = r.has_observable("profile_r_count");
+  if (!slabs && !shells)
+    throw InputError(path, "/observables/profile_z_count", "expected the profiles of anisodyn-dpd's \"profiles\" key (profile_z_* or profile_r_*)");
+  std::vector<io::H5mdReader::Series> series;
+  const std::vector<std::string> names = {"profile_z_count", "profile_z_vx_sum", "profile_r_count", "profile_r_midplane_count",
+                                          "profile_r_midplane_vx_sum"};
+  for (const std::string& name : names) series.push_back(r.has_observable(name) ? r.read_observable(name) : io::H5mdReader::Series{});
+  if (slabs) {
+    out.geometry.z_bin = bin_width(r, "profile_z_count");
+    const auto edges = r.box_edges_frames();
+    out.geometry.area = edges.at(0) * edges.at(1);
+  }
+  if (shells) out.geometry.r_bin = bin_width(r, "profile_r_count");
+  // The kept rows, split into contiguous blocks.
+  const io::H5mdReader::Series& first = slabs ? series[0] : series[2];
+  std::vector<std::size_t> kept;
+  for (std::size_t row = 0; row < first.rows(); ++row)
+    if (keep(first.time[row])) kept.push_back(row);
+  if (kept.size() < blocks)
+    throw InputError(path, "/observables/" + std::string(slabs ? names[0] : names[2]),
+                     "expected at least " + std::to_string(blocks) + " profile rows in the window, got " + std::to_string(kept.size()));
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const std::size_t begin = kept[kept.size() * b / blocks], end = kept[kept.size() * (b + 1) / blocks - 1] + 1;
+    ProfileSums s;
+    s.rows = end - begin;
+    std::vector<double>* target[] = {&s.z_count, &s.z_vx, &s.r_count, &s.r_mid_count, &s.r_mid_vx};
+    for (std::size_t k = 0; k < names.size(); ++k)
+      if (series[k].rows()) add_rows(series[k], begin, end, *target[k]);
+    out.samples.push_back(std::move(s));
+  }
+  return out;
+}
+
+FlowResult compute_flow(const FlowGeometry& g, const std::vector<ProfileSums>& samples, const std::optional<SlipFitSettings>& slip) {
+  FlowResult r;
+  r.samples = samples.size();
+  const ProfileSums all = total(samples, samples.size());
+  r.rows = all.rows;
+  const Estimates e = estimate(g, all, slip);
+  std::vector<Estimates> loo;
+  for (std::size_t s = 0; s < samples.size() && samples.size() > 1; ++s) loo.push_back(estimate(g, total(samples, s), slip));
+  auto errors = [&](auto member, std::size_t k) {
+    std::vector<double> x;
+    for (const Estimates& l : loo) x.push_back((l.*member)[k]);
+    return jackknife(x);
+  };
+  auto scalar = [&](double Estimates::*member) -> ValueError {
+    std::vector<double> x;
+    for (const Estimates& l : loo) x.push_back(l.*member);
+    return {e.*member, jackknife(x)};
+  };
+  for (std::size_t k = 0; k < e.density_z.size(); ++k) {
+    r.z.push_back((static_cast<double>(k) + 0.5) * g.z_bin);
+    r.density_z.push_back(e.density_z[k]);
+    r.density_z_se.push_back(errors(&Estimates::density_z, k));
+    r.vx_z.push_back(e.vx_z[k]);
+    r.vx_z_se.push_back(errors(&Estimates::vx_z, k));
+  }
+  for (std::size_t k = 0; k < e.density_r.size(); ++k) {
+    r.r.push_back((static_cast<double>(k) + 0.5) * g.r_bin);
+    r.density_r.push_back(e.density_r[k]);
+    r.density_r_se.push_back(errors(&Estimates::density_r, k));
+    r.vx_r.push_back(e.vx_r[k]);
+    r.vx_r_se.push_back(errors(&Estimates::vx_r, k));
+  }
+  if (!e.density_z.empty()) r.v_mean = scalar(&Estimates::v_mean);
+  if (slip && !e.density_z.empty()) {
+    r.slip_length = scalar(&Estimates::slip);
+    r.gradient = scalar(&Estimates::gradient);
+    r.v_top = scalar(&Estimates::v_top);
+    r.shear_rate = scalar(&Estimates::shear_rate);
+    r.fit_bins = e.fit_bins;
+  }
+  return r;
+}
+
+}  // namespace anisodyn::analysis
