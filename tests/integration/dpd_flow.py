@@ -2,7 +2,8 @@
 """anisodyn-dpd's walls, drive, profiles and fixed colloid (spec 30 §6, §8) and anisodyn-flow:
 
 1. a drive alone (no walls, periodic liquid): the total momentum grows by exactly f N dt per step
-   (internal forces cancel pair by pair), to round-off;
+   (internal forces cancel pair by pair), to round-off; anisodyn-observables finds that slope and
+   numpy's mean temperature;
 2. a Couette channel (walls at z = 0 with friction and z = 8 without, drive on z > 6): no liquid
    particle leaves the channel; the slab counts of every row add up to N; two threads give the same
    bits; SIGINT and SIGKILL resume bit for bit; with the drive on every particle, the liquid's x
@@ -59,6 +60,18 @@ expected = np.outer(t, [0.01 * 648, -0.02 * 648, 0.0])
 err = np.abs(P - expected).max()
 print(f"drive alone: |P - f N t| <= {err:.1e} over {t[-1]:g} tau (P_x = {P[-1, 0]:.4f})")
 assert err < 1e-9, err
+
+# anisodyn-observables on the same run: the momentum's slope is f N exactly, the temperature's mean numpy's.
+write("obs.json", {"means": ["kinetic_temperature"], "drifts": ["momentum"], "window": {"from": 2}})
+r = run([tool("anisodyn-observables"), "-q", "--config", "obs.json", "--input", "push.h5", "--output", "obs.h5"])
+assert r.returncode == 0, r.stderr
+with h5py.File("obs.h5") as f, h5py.File("push.h5") as g:
+    slope_x, slope_y = f["scalars/momentum_0_drift"][...], f["scalars/momentum_1_drift"][...]
+    T = f["scalars/kinetic_temperature"][...]
+    T_rows, T_times = observable(g, "kinetic_temperature")
+print(f"anisodyn-observables: dP/dt = ({slope_x[0]:.10f}, {slope_y[0]:.10f}) (f N = 6.48, -12.96), T_kin {T[0]:.5f} ± {T[1]:.5f}")
+assert abs(slope_x[0] - 6.48) < 1e-9 and abs(slope_y[0] + 12.96) < 1e-9 and slope_x[1] < 1e-9
+assert abs(T[0] - T_rows[T_times >= 2 - 1e-9].mean()) < 1e-12 and 0 < T[1] < 0.05
 
 # 2. The Couette channel.
 couette = {"seed": 4, "time_step": 0.005, "steps": 2000, "observe_every": 100, "liquid": {"a": 25, "gamma": 100},
