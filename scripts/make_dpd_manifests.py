@@ -100,8 +100,13 @@ def rod_manifest(smoke):
         reps, t_run, win, fit = 200, 1000, 500, {"t_min": 10, "t_max": 100}
         rods = list(TABLE_S1["rod"])
     shape = {"type": "spherocylinder", "length": "${grid.cylinder}", "diameter": "${grid.d}"}
-    series_t, series_r = [], []
+    series_t, series_r, series_p = [], [], []
     for d, L in rods:
+        largest_box = max(Lb for dd, LL, Lb in pairs if (dd, LL) == (d, L))
+        for g in grid["gamma_ls0"]:
+            series_p.append({"stage": "msd", "scalar": "D_body_par_over_perp_rod", "at_x": L / d,
+                             "select": {"d": d, "cylinder": L - d, "L_box": largest_box, "gamma_ls0": g},
+                             "label": f"({d},{L}), L_box = {largest_box}, gamma_ls0 = {g:.4g}"})
         dt_, dr_ = tgdlt(d, L)
         for g in grid["gamma_ls0"]:
             sel = {"d": d, "cylinder": L - d, "gamma_ls0": g}
@@ -125,8 +130,10 @@ def rod_manifest(smoke):
         "stages": stages(shape, 0.05, t_run, win, fit, rod=True),
         "report": {
             "title": "C5" + (" smoke" if smoke else "") + ": rod diffusion in the DPD liquid",
-            "scalars": [{"stage": "msd", "names": ["D_tot_rod", "D_par_rod", "D_perp_rod", "D_body_z_rod", "D_body_x_rod"],
-                         "caption": "D_t, D_par, D_perp (lab frame, to the axis at the time origin) and the body-frame D_par (body_z), D_perp (body_x), r_c^2/tau"},
+            "scalars": [{"stage": "msd", "names": ["D_tot_rod", "D_par_rod", "D_perp_rod", "D_body_z_rod", "D_body_x_rod",
+                                                   "D_par_over_D_perp_rod", "D_body_par_over_perp_rod"],
+                         "caption": "D_t, D_par, D_perp (lab frame, to the axis at the time origin) and the body-frame D_par (body_z), D_perp (body_x), "
+                                    "r_c^2/tau; D_par/D_perp in the lab and the body frame"},
                         {"stage": "rotation", "names": ["Dr_msad_L_rod", "Dr_C1_L_rod"], "caption": "D_r of the rod axis from the MSAD (4 D_r t) and from C1, 1/tau"}],
             "plots": [
                 {"name": "reduced_D_t", "x": "L_box", "x_power": -1, "series": series_t,
@@ -134,7 +141,9 @@ def rod_manifest(smoke):
                  "xlabel": "phi_t^(1/3)", "ylabel": f"D~_t = D_t eta d_t (eta = {ETA})", "title": "Reduced translational diffusion of the rod"},
                 {"name": "reduced_D_r", "x": "L_box", "x_power": -1, "series": series_r,
                  "theory": [{"kind": "periodic_rotation", "band": 0.2}],
-                 "xlabel": "phi_r^(1/3)", "ylabel": f"D~_r = D_r eta d_r^3 (eta = {ETA})", "title": "Reduced rotational diffusion of the rod"}]}}
+                 "xlabel": "phi_r^(1/3)", "ylabel": f"D~_r = D_r eta d_r^3 (eta = {ETA})", "title": "Reduced rotational diffusion of the rod"},
+                {"name": "anisotropy_vs_p", "series": series_p, "theory": [{"kind": "tirado_ratio"}],
+                 "xlabel": "p = L/d", "ylabel": "D_par/D_perp (body frame)", "title": "Translational anisotropy against aspect ratio"}]}}
     if zip_:
         m["zip"] = zip_
     return m

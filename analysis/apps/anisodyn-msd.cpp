@@ -69,6 +69,14 @@ void write_results(StageRun& run, const SelectedSpecies& sp, const MsdResult& r)
     run.out.scalar(s);
     write_free_diffusion(run, sp, c);
   }
+  const nlohmann::json ratio_details = {{"fit_t_min", r.fit_t_min}, {"fit_t_max", r.fit_t_max}, {"samples", r.samples},
+                                        {"method", "ratio of the fitted slopes; jackknife over replicas (origin blocks for one replica)"}};
+  if (r.par_over_perp)
+    run.out.scalar({"D_par_over_D_perp_" + sp.name, r.par_over_perp->value, r.par_over_perp->error, "1",
+                    "D_par / D_perp (lab frame, to the reference at the time origin)", ratio_details});
+  if (r.body_par_over_perp)
+    run.out.scalar({"D_body_par_over_perp_" + sp.name, r.body_par_over_perp->value, r.body_par_over_perp->error, "1",
+                    "D_body_z / ((D_body_x + D_body_y)/2): a rod's D_par/D_perp in its body frame", ratio_details});
   for (std::size_t k = 0; k < r.directors.size(); ++k) {
     nlohmann::json details = {{"director", {r.directors[k].x(), r.directors[k].y(), r.directors[k].z()}}};
     if (!r.director_species.empty()) details["director_species"] = r.director_species;  // spheres take the bath's

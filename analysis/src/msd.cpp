@@ -308,6 +308,24 @@ MsdResult MsdAnalysis::compute() const {
     };
     r.components[k].diffusion = window.size() >= 2 ? jackknife(samples_, slope_over_window) : Estimate{};
   }
+  // D_∥/D_⊥ (lab frame to the axis at the origin; body frame: body_z over the mean of body_x and
+  // body_y), a ratio of slopes with its own jackknife (spec 30 §9, the C5 plot against p).
+  auto index_of = [&](const std::string& name) -> std::ptrdiff_t {
+    const auto it = std::find(names_.begin(), names_.end(), name);
+    return it == names_.end() ? -1 : it - names_.begin();
+  };
+  auto slope_of = [&](const std::vector<double>& m, std::ptrdiff_t k) {
+    std::vector<double> x, y;
+    for (std::size_t c : window) { x.push_back(r.lag[c]); y.push_back(m[2 * static_cast<std::size_t>(k) * nc + c]); }
+    return fit_line(x, y).slope;
+  };
+  const std::ptrdiff_t lab_par = index_of("par"), lab_perp = index_of("perp"), bx = index_of("body_x"), by = index_of("body_y"), bz = index_of("body_z");
+  if (window.size() >= 2 && lab_par >= 0 && lab_perp >= 0)
+    r.par_over_perp = jackknife(samples_, [&](const std::vector<double>& m) { return slope_of(m, lab_par) / slope_of(m, lab_perp); });
+  if (window.size() >= 2 && bx >= 0 && by >= 0 && bz >= 0)
+    r.body_par_over_perp = jackknife(samples_, [&](const std::vector<double>& m) {
+      return 2.0 * slope_of(m, bz) / (slope_of(m, bx) + slope_of(m, by));
+    });
   return r;
 }
 

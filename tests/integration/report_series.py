@@ -4,7 +4,8 @@
   2. a series list draws each entry's scalar against grid value × x_scale (its own stage and select), an
      entry whose stage does not depend on x as a horizontal line with its ±band, and the linear theory line
      from x = 0; the single-scalar form takes x_scale too; y_scale and an entry's own scales; Hasimoto's stick
-     and slip lines and (1 - phi)/pi against their formulas (spec 30 §10);
+     and slip lines and (1 - phi)/pi against their formulas (spec 30 §10); entries at their own x (at_x) with the
+     Tirado-Garcia de la Torre D_par/D_perp line;
   3. at report time: an entry with several grid points at one x, a band on an entry that varies with x, and
      a missing scalar are errors naming the entry's path; an entry whose select matches nothing draws nothing.
 argv: [1] build bin dir (unused), [2] scratch dir, [3] source dir."""
@@ -68,6 +69,11 @@ BAD = [  # (what, plot, the path the message must name)
     ("a Hasimoto line of an unknown boundary", dict(GOOD_PLOT, theory=[{"kind": "hasimoto", "boundary": "partial"}]),
      "report.plots[0].theory[0].boundary"),
     ("a band of 120%", dict(GOOD_PLOT, theory=[{"kind": "periodic_rotation", "band": 1.2}]), "report.plots[0].theory[0].band"),
+    ("at_x as text", dict(GOOD_PLOT, series=[{"stage": "pairs", "scalar": "D", "at_x": "4"}]), "report.plots[0].series[0].at_x"),
+    ("x beside entries that all give at_x", {"name": "p", "x": "N", "series": [{"stage": "pairs", "scalar": "D", "at_x": 4}]},
+     "report.plots[0].x"),
+    ("x_scale with at_x", dict(GOOD_PLOT, series=[{"stage": "pairs", "scalar": "D", "at_x": 4, "x_scale": 2}]),
+     "report.plots[0].series[0].x_scale"),
     ("a stage beside a series list", dict(GOOD_PLOT, stage="pairs"), "report.plots[0].stage"),
     ("a scalar beside a series list", dict(GOOD_PLOT, scalar="D"), "report.plots[0]"),
     ("an empty series list", dict(GOOD_PLOT, series=[]), "report.plots[0].series"),
@@ -175,6 +181,25 @@ check(np.allclose(stick.get_ydata(), q / (3 * np.pi)) and np.isclose(stick.get_y
       np.allclose(rot.get_ydata(), (1 - rot.get_xdata() ** 3) / np.pi),
       "Hasimoto's stick Q/(3 pi) (1/(3 pi) at phi = 0), slip Q Q'/(3 pi) (1/(2 pi) at phi = 0) and (1 - phi)/pi")
 check(any(p.get_label() == "± 20%" for p in ax.collections), "the stick line's ±20% band")
+
+# at_x: each entry's one grid point at its own x (a rod's p), no grid variable on x; the Tirado-Garcia de la Torre ratio.
+ax = draw({"name": "t", "series": [{"stage": "pairs", "scalar": "D", "select": {"N": 90, "hardness": 1.0}, "at_x": 2.0, "label": "p2"},
+                                   {"stage": "pairs", "scalar": "D", "select": {"N": 440, "hardness": 2.0}, "at_x": 6.0, "label": "p6"}],
+           "theory": [{"kind": "tirado_ratio"}]})
+lines = labelled(ax)
+p_line = lines["Tirado-Garcia de la Torre"]
+pp = p_line.get_xdata()
+ratio = 2 * (np.log(pp) - 0.207 + 0.980 / pp - 0.133 / pp ** 2) / (np.log(pp) + 0.839 + 0.185 / pp + 0.233 / pp ** 2)
+check(np.allclose(lines["p2"].get_xdata(), [2.0]) and np.allclose(lines["p2"].get_ydata(), [d_value(90, 1.0)]) and
+      np.allclose(lines["p6"].get_xdata(), [6.0]) and np.allclose(lines["p6"].get_ydata(), [d_value(440, 2.0)]),
+      "entries with at_x draw their one grid point at their own x")
+check(np.allclose(p_line.get_ydata(), ratio) and np.isclose(np.interp(2.0, pp, p_line.get_ydata()), 0.07503 / 0.06696, rtol=1e-3),
+      "the Tirado-Garcia de la Torre D_par/D_perp, 1.121 at p = 2 (spec 30 §10's table)")
+try:
+    draw({"name": "u", "series": [{"stage": "pairs", "scalar": "D", "select": {"hardness": 1.0}, "at_x": 2.0}]})
+    check(False, "an at_x entry with several grid points is drawn")
+except ReportError as e:
+    check("at_x" in str(e) and "report.plots[0].series[0]" in str(e), f"an at_x entry with several grid points: {e}")
 
 ax = draw(dict(GOOD_PLOT, select={"hardness": 2.0}, series=[{"stage": "pairs", "scalar": "D", "label": "2k"},
                                                              {"stage": "pairs", "scalar": "D", "select": {"hardness": 1.0}, "label": "k"}]))

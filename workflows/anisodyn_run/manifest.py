@@ -260,17 +260,17 @@ def substitute(value, point, replica, study):
     return REFERENCE.sub(lambda mo: format_value(lookup(mo.group(1))), value)
 
 
-THEORY_KINDS = {"constant", "linear", "power", "exponential", "free_diffusion", "wertheim", "hasimoto", "periodic_rotation"}
+THEORY_KINDS = {"constant", "linear", "power", "exponential", "free_diffusion", "wertheim", "hasimoto", "periodic_rotation", "tirado_ratio"}
 # The keys each report item reads (report.py): anything else would be silently ignored.
 SCALAR_BLOCK_KEYS = {"stage", "names", "caption"}
 PLOT_KEYS = {"name", "stage", "select", "log", "xlabel", "ylabel", "title", "caption", "theory"}
 TABLE_PLOT_KEYS = PLOT_KEYS | {"table", "x", "y", "errors"}
 SCALAR_PLOT_KEYS = PLOT_KEYS | {"scalar", "x", "x_scale", "x_power", "y_scale", "series"}
 SERIES_PLOT_KEYS = (PLOT_KEYS - {"stage"}) | {"x", "x_scale", "x_power", "y_scale", "series"}  # "series": a list of entries, each its own stage
-SERIES_ENTRY_KEYS = {"stage", "scalar", "label", "select", "band", "x_scale", "y_scale"}
+SERIES_ENTRY_KEYS = {"stage", "scalar", "label", "select", "band", "x_scale", "y_scale", "at_x"}
 THEORY_KEYS = {"constant": {"value"}, "linear": {"intercept", "slope"}, "power": {"prefactor", "exponent"},
                "exponential": {"tau", "amplitude"}, "free_diffusion": {"species", "component"}, "wertheim": {"scalar"},
-               "hasimoto": {"boundary", "band"}, "periodic_rotation": {"band"}}
+               "hasimoto": {"boundary", "band"}, "periodic_rotation": {"band"}, "tirado_ratio": set()}
 THEORY_NUMBERS = {"linear": {"intercept", "slope"}}  # keys a line needs, each a number
 
 
@@ -315,6 +315,11 @@ def check_series_entries(item, p, stages, grid):
         for key in ("x_scale", "y_scale"):
             if key in e and (not is_number(e[key]) or e[key] == 0 or not math.isfinite(e[key])):
                 raise ManifestError(f"{q}.{key}", "a non-zero number (overrides the plot's)", e[key])
+        if "at_x" in e:
+            if not is_number(e["at_x"]) or not math.isfinite(e["at_x"]):
+                raise ManifestError(f"{q}.at_x", "a number: the x coordinate of the entry's one grid point", e["at_x"])
+            if "x_scale" in e:
+                raise ManifestError(f"{q}.x_scale", "no 'x_scale': it has no effect with at_x (the point is drawn at at_x)")
 
 
 def validate_report(m):
@@ -357,7 +362,13 @@ def validate_report(m):
             check_select(item.get("select", {}), f"{p}.select", grid)
             if "table" in item and (not isinstance(item.get("y"), list) or not item["y"]):
                 raise ManifestError(f"{p}.y", "a non-empty list of column names", item.get("y"))
-            if "table" not in item:
+            # A series list whose entries all give their own x (at_x) has no grid variable on x.
+            fixed_x = listed and all(isinstance(e, dict) and "at_x" in e for e in item["series"])
+            if fixed_x:
+                for key in ("x", "x_scale", "x_power"):
+                    if key in item:
+                        raise ManifestError(f"{p}.{key}", f"no '{key}': it has no effect, every entry gives its own at_x")
+            if "table" not in item and not fixed_x:
                 for axis in ("x", "series") if "scalar" in item else ("x",):
                     value = item.get(axis)
                     if (axis == "x" or axis in item) and (not isinstance(value, str) or value not in grid):

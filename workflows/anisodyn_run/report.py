@@ -303,7 +303,8 @@ class Report:
         x, factor, power = spec.get("x"), spec.get("x_scale", 1.0), spec.get("x_power", 1.0)
         scale = self.x_scaling(factor, power)  # grid value → x coordinate
         grid = self.m.get("grid", {})
-        if x not in grid:
+        fixed_x = isinstance(spec.get("series"), list) and all("at_x" in e for e in spec["series"])
+        if x not in grid and not fixed_x:
             raise ReportError(f"{where}.x: expected a grid variable ({', '.join(grid) or 'none'})")
         if isinstance(spec.get("series"), list):
             xs = []
@@ -322,7 +323,7 @@ class Report:
             xs = []
             for label, pts in groups.items():
                 xs += self.draw_points(ax, pts, f"{by} = {label}" if by else spec["scalar"])
-        if not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in grid[x]):
+        if not fixed_x and not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in grid[x]):
             ax.set_xticks(range(len(grid[x])), [format_value(v) for v in grid[x]])
         xs = np.array(sorted(set(xs)))
         for t in spec.get("theory", []):
@@ -348,6 +349,10 @@ class Report:
         label = entry.get("label", entry["scalar"])
         y = entry.get("y_scale", 1.0)
         points = [(xv, v * y, e * abs(y), job) for xv, v, e, job in self.scalar_points(entry, where, x, scale, select, constant_allowed=True)]
+        if "at_x" in entry:  # the entry's one grid point, drawn at its own x (e.g. a rod's aspect ratio)
+            if len(points) > 1:
+                raise ReportError(f"{where}: {len(points)} grid points for an entry with at_x; pick one with select")
+            return self.draw_points(ax, [(entry["at_x"], v, e) for _, v, e, _ in points], label) if points else []
         if not points:  # as for the single scalar: a select no grid point matches (e.g. in a smoke variant) draws nothing
             return []
         if points[0][0] is None:
@@ -426,6 +431,12 @@ class Report:
             pb = scalars[match[0]][0]
             ls = np.arange(max(1, int(lo)), int(hi) + 1)
             ax.plot(ls, (1 - pb) ** 2 * pb ** (ls - 1), label=t.get("label", f"Wertheim, p_b = {pb:.3g}"), **style)
+        elif kind == "tirado_ratio":
+            # x = p = L/d: D_par/D_perp of a stick cylinder, Tirado & Garcia de la Torre (spec 30 §10)
+            p = np.linspace(min(lo, 2.0), max(hi, 2.0), 200)
+            nu_par = -0.207 + 0.980 / p - 0.133 / p ** 2
+            nu_perp = 0.839 + 0.185 / p + 0.233 / p ** 2
+            ax.plot(p, 2 * (np.log(p) + nu_par) / (np.log(p) + nu_perp), label=t.get("label", "Tirado-Garcia de la Torre"), **style)
         elif kind in ("hasimoto", "periodic_rotation"):
             # x = phi^(1/3): spec 30 §10's reduced D of a sphere in a simple cubic periodic array (Hasimoto's
             # Q, with Q' = (3 + 27.9 phi)/2 for slip), or a body's rotation (1 - phi)/pi (Linke, Kofinger & Hummer).
@@ -444,7 +455,7 @@ class Report:
                                 label=f"± {100 * t['band']:g}%")
         else:
             raise ReportError(f"{where}.theory: unknown kind '{kind}' (constant, linear, power, exponential, free_diffusion, wertheim, "
-                              "hasimoto, periodic_rotation)")
+                              "hasimoto, periodic_rotation, tirado_ratio)")
 
     def free_diffusivity(self, job, t, where):
         """D of the free-particle line (MSD = 2 D t), from the D0 scalars the msd stage wrote from its

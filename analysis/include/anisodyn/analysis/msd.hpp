@@ -59,6 +59,8 @@ struct MsdResult {
   std::vector<double> director_order; // per replica
   std::string director_species;       // whose director it is, when not the analysed species' own (spheres)
   std::size_t samples = 0;            // replicas, or blocks for one replica
+  std::optional<Estimate> par_over_perp;       // D_par / D_perp, with par and perp components
+  std::optional<Estimate> body_par_over_perp;  // D_body_z / mean(D_body_x, D_body_y), with body components
   bool uniform_frames = false;
   const MsdComponent& component(const std::string& name) const;
 };

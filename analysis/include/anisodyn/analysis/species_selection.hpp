@@ -16,7 +16,7 @@ struct SelectedSpecies {
 
 /// What a stage takes when the config names no species.
 enum class SpeciesScope {
-  Every,     // every species of the file
+  Every,     // every species the file's frames hold (its table may name more)
   Oriented,  // every anisotropic species: spheres carry no orientation, and naming one is an error
   Single,    // the only species of the file: several and none named is an error
 };
