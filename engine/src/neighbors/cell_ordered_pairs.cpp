@@ -84,10 +84,11 @@ void CellOrderedPairs::sort_into_cells(const Box& box, const double* x, const do
     // Each cell's distinct neighbours (a box of 2 cells along an edge has the same cell at −1 and +1)
     // above it, ascending: the cells the search of a particle of that cell visits besides its own.
     cells_ = cells;
-    upper_cells_.assign(static_cast<std::size_t>(ncells), {});
+    search_runs_.assign(static_cast<std::size_t>(ncells), {});
+    std::vector<std::int32_t> up;
     for (int c = 0; c < ncells; ++c) {
       const int cx = c % cells[0], cy = (c / cells[0]) % cells[1], cz = c / (cells[0] * cells[1]);
-      std::vector<std::int32_t>& up = upper_cells_[static_cast<std::size_t>(c)];
+      up.assign(1, c);  // the cell itself first (its search starts after the particle)
       for (int dz = -1; dz <= 1; ++dz)
         for (int dy = -1; dy <= 1; ++dy)
           for (int dx = -1; dx <= 1; ++dx) {
@@ -97,6 +98,11 @@ void CellOrderedPairs::sort_into_cells(const Box& box, const double* x, const do
           }
       std::sort(up.begin(), up.end());
       up.erase(std::unique(up.begin(), up.end()), up.end());
+      auto& runs = search_runs_[static_cast<std::size_t>(c)];
+      for (const std::int32_t nc : up) {
+        if (!runs.empty() && runs.back().second + 1 == nc) runs.back().second = nc;
+        else runs.emplace_back(nc, nc);
+      }
     }
   }
   std::vector<std::int32_t> cell(n);
@@ -178,9 +184,11 @@ void CellOrderedPairs::find_pairs(const Box& box) {
         }
       };
       const auto c = static_cast<std::size_t>(cell_of_[k]);
-      scan(k + 1, static_cast<std::size_t>(cell_start_[c + 1]));
-      for (const std::int32_t nc : upper_cells_[c])
-        scan(static_cast<std::size_t>(cell_start_[static_cast<std::size_t>(nc)]), static_cast<std::size_t>(cell_start_[static_cast<std::size_t>(nc) + 1]));
+      const auto& runs = search_runs_[c];  // the first run begins with the particle's own cell
+      scan(k + 1, static_cast<std::size_t>(cell_start_[static_cast<std::size_t>(runs.front().second) + 1]));
+      for (std::size_t r = 1; r < runs.size(); ++r)
+        scan(static_cast<std::size_t>(cell_start_[static_cast<std::size_t>(runs[r].first)]),
+             static_cast<std::size_t>(cell_start_[static_cast<std::size_t>(runs[r].second) + 1]));
       row_end[k] = count;  // within the block, for now
     }
     found_count[static_cast<std::size_t>(b)] = count;
