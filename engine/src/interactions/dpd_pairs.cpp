@@ -62,6 +62,21 @@ void DpdForceField::update_list(const State& s, std::size_t n) {
   list_.update(s.box, lx_.data(), ly_.data(), lz_.data(), n);
 }
 
+namespace {
+
+/// Σ_q x[q] y[q] with eight partial sums combined in a fixed order: the association is the
+/// source's, so the sum has the same bits on any thread, and the loop vectorises.
+double fixed_dot(const double* x, const double* y, std::size_t n) {
+  double acc[8] = {};
+  std::size_t q = 0;
+  for (; q + 8 <= n; q += 8)
+    for (std::size_t l = 0; l < 8; ++l) acc[l] += x[q + l] * y[q + l];
+  for (std::size_t l = 0; q + l < n; ++l) acc[l] += x[q + l] * y[q + l];
+  return ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
+}
+
+}  // namespace
+
 void DpdForceField::row_forces(const RowTask* tasks, std::size_t count, std::size_t block_end, bool cross_only, const Box& box) {
   const Vec3 L = box.edges(), inv = box.inverse_edges();
   const double rc = p_.cutoff, rc2 = rc * rc, inv_rc = 1.0 / rc;
@@ -69,12 +84,12 @@ void DpdForceField::row_forces(const RowTask* tasks, std::size_t count, std::siz
   // Scratch of this thread, grown as needed: the candidates of all the rows, then those within the
   // cut-off, gathered without a branch (half of the candidates are, at random), then their forces
   // in a loop the compiler vectorises, then the sums.
-  thread_local std::vector<double> dx, dy, dz, r2, theta, e0, e1, e2, rr, pc, pd, pr;
+  thread_local std::vector<double> dx, dy, dz, r2, theta, e0, e1, e2, rr, pc, pd, pr, en, q0, q1, q2, q3, q4, q5;
   thread_local std::vector<std::uint32_t> task_of, partner, within, id_a, id_b, kk, jj;
   std::size_t candidates = 0;
   for (std::size_t t = 0; t < count; ++t) candidates += tasks[t].m_end - tasks[t].m_begin;
   if (dx.size() < candidates) {
-    for (auto* v : {&dx, &dy, &dz, &r2, &theta, &e0, &e1, &e2, &rr, &pc, &pd, &pr}) v->resize(2 * candidates);
+    for (auto* v : {&dx, &dy, &dz, &r2, &theta, &e0, &e1, &e2, &rr, &pc, &pd, &pr, &en, &q0, &q1, &q2, &q3, &q4, &q5}) v->resize(2 * candidates);
     for (auto* v : {&task_of, &partner, &within, &id_a, &id_b, &kk, &jj}) v->resize(2 * candidates);
   }
   std::size_t c = 0;
@@ -92,6 +107,7 @@ void DpdForceField::row_forces(const RowTask* tasks, std::size_t count, std::siz
       dx[c] = ddx, dy[c] = ddy, dz[c] = ddz;
       r2[c] = ddx * ddx + ddy * ddy + ddz * ddz;
       task_of[c] = static_cast<std::uint32_t>(t);
+      kk[c] = static_cast<std::uint32_t>(task.k);
       partner[c] = static_cast<std::uint32_t>(j);
     }
   }
@@ -99,7 +115,7 @@ void DpdForceField::row_forces(const RowTask* tasks, std::size_t count, std::siz
   // candidates' from the front, which the loop has already read).
   std::size_t inside = 0;
   for (std::size_t q = 0; q < candidates; ++q) {
-    const auto k = static_cast<std::uint32_t>(tasks[task_of[q]].k);
+    const std::uint32_t k = kk[q];  // kk[inside] is written below: inside ≤ q, so kk[q] is still the candidate's
     within[inside] = static_cast<std::uint32_t>(q);
     kk[inside] = k;
     jj[inside] = partner[q];
@@ -122,6 +138,10 @@ void DpdForceField::row_forces(const RowTask* tasks, std::size_t count, std::siz
     const double* __restrict th = theta.data();
     double *__restrict out_r = rr.data(), *__restrict out_x = e0.data(), *__restrict out_y = e1.data(), *__restrict out_z = e2.data();
     double *__restrict out_c = pc.data(), *__restrict out_d = pd.data(), *__restrict out_n = pr.data();
+    // For the sums: the pair energy and r r̂ ⊗ r̂ (xx, yy, zz, xy, xz, yz), which times each part's
+    // magnitude is that part's r_kj ⊗ F_kj.
+    double *__restrict out_e = en.data(), *__restrict o0 = q0.data(), *__restrict o1 = q1.data(), *__restrict o2 = q2.data();
+    double *__restrict o3 = q3.data(), *__restrict o4 = q4.data(), *__restrict o5 = q5.data();
 #pragma omp simd
     for (std::size_t q = 0; q < inside; ++q) {
       const std::uint32_t k = pk[q], j = pj[q];
@@ -133,7 +153,25 @@ void DpdForceField::row_forces(const RowTask* tasks, std::size_t count, std::siz
       out_c[q] = a * w;
       out_d[q] = -gamma * w * w * along;
       out_n[q] = sigma * w * th[q];
+      out_e[q] = half_energy * w * w;
+      o0[q] = r * ex * ex, o1[q] = r * ey * ey, o2[q] = r * ez * ez;
+      o3[q] = r * ex * ey, o4[q] = r * ex * ez, o5[q] = r * ey * ez;
     }
+  }
+  if (!cross_only && inside > 0) {
+    // The group's sums (one call holds the rows of one group), each a fixed-order sum over its pairs.
+    double* sum = partial_.data() + kSums * (tasks[0].k / kRowsPerGroup);
+    const double* pair_energy = en.data();
+    double energy[8] = {};
+    std::size_t q = 0;
+    for (; q + 8 <= inside; q += 8)
+      for (std::size_t l = 0; l < 8; ++l) energy[l] += pair_energy[q + l];
+    for (std::size_t l = 0; q + l < inside; ++l) energy[l] += pair_energy[q + l];
+    sum[0] += ((energy[0] + energy[1]) + (energy[2] + energy[3])) + ((energy[4] + energy[5]) + (energy[6] + energy[7]));
+    const double* parts[3] = {pc.data(), pd.data(), pr.data()};
+    const double* geometry[6] = {q0.data(), q1.data(), q2.data(), q3.data(), q4.data(), q5.data()};
+    for (int n = 0; n < 3; ++n)
+      for (int e = 0; e < 6; ++e) sum[1 + 6 * n + e] += fixed_dot(parts[n], geometry[e], inside);
   }
   double* force = force_.data();
   for (std::size_t q = 0; q < inside; ++q) {
@@ -155,15 +193,6 @@ void DpdForceField::row_forces(const RowTask* tasks, std::size_t count, std::siz
       force[3 * j + 1] -= f[1];
       force[3 * j + 2] -= f[2];
     }
-    double* sum = partial_.data() + kSums * (k / kRowsPerGroup);  // the group's sums, rows in order
-    const double w = 1.0 - rr[q] * inv_rc;
-    sum[0] += half_energy * w * w;
-    // r_kj ⊗ F_kj = f_m r (r̂ ⊗ r̂): xx, yy, zz, xy, xz, yz
-    const double r = rr[q], ex = e0[q], ey = e1[q], ez = e2[q];
-    const double qq[6] = {r * ex * ex, r * ey * ey, r * ez * ez, r * ex * ey, r * ex * ez, r * ey * ez};
-    const double parts[3] = {pc[q], pd[q], pr[q]};
-    for (int n = 0; n < 3; ++n)
-      for (int e = 0; e < 6; ++e) sum[1 + 6 * n + e] += parts[n] * qq[e];
   }
 }
 

@@ -24,7 +24,8 @@
 // pairs above (ascending), whatever the number of threads, and both particles of a pair get
 // exactly opposite forces: Newton's third law holds pair by pair. The virial (by part, its six
 // independent elements: r_ij ⊗ F_ij is symmetric for central forces) and the energy are summed per
-// group of kRowsPerGroup positions (blocks hold whole groups) and reduced in group order. Only the
+// group of kRowsPerGroup positions (blocks hold whole groups; each a sum over the group's pairs with
+// eight partial sums in a fixed order, which vectorises) and reduced in group order. Only the
 // liquid particles that set_liquid() names take part (all, by default). The order is a function of the
 // positions at the list's last build, which a checkpoint keeps (list_positions), so a resumed run
 // adds in the same order.
