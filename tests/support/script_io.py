@@ -37,3 +37,16 @@ def observable(f, name):
         if f"{group}/{name}" in f:
             return f[f"{group}/{name}/value"][...], f[f"{group}/{name}/time"][...]
     raise KeyError(name)
+
+
+def expect_bad_input(what, cmd, names, output="bad.h5"):
+    """Runs cmd, a tool given bad input: it must exit 2, name in its message every string of `names`
+    (the JSON path; a tuple stands for one of its strings, e.g. the config file or the input file),
+    and leave nothing at `output` or beside it. Prints the message's last line."""
+    r = run(cmd)
+    assert r.returncode == 2, (what, r.returncode, r.stderr)
+    for name in names:
+        alternatives = name if isinstance(name, tuple) else (name,)
+        assert any(a in r.stderr for a in alternatives), (what, name, r.stderr)
+    assert not any(f.startswith(output) for f in os.listdir(".")), what
+    print(f"bad input, {what}: exit 2: {r.stderr.strip().splitlines()[-1][:160]}")
