@@ -144,6 +144,20 @@ def rod_manifest(smoke):
                  "xlabel": "phi_r^(1/3)", "ylabel": f"D~_r = D_r eta d_r^3 (eta = {ETA})", "title": "Reduced rotational diffusion of the rod"},
                 {"name": "anisotropy_vs_p", "series": series_p, "theory": [{"kind": "tirado_ratio"}],
                  "xlabel": "p = L/d", "ylabel": "D_par/D_perp (body frame)", "title": "Translational anisotropy against aspect ratio"}]}}
+    if not smoke:
+        # Spec 30 §10's slip-rod comparison: for gamma_ls0 = 0 and d >= 2, D_t / D_t^{SE,slip}(d_t) = D_t 2 pi eta d_t
+        # against phi_t^(1/3), with the fitted line c0 + c1 phi_t^(1/3).
+        series_slip = []
+        for d, L in rods:
+            if d < 2:
+                continue
+            dt_, _ = tgdlt(d, L)
+            series_slip.append({"stage": "msd", "scalar": "D_tot_rod", "select": {"d": d, "cylinder": L - d, "gamma_ls0": 0},
+                                "x_scale": 1 / (C * dt_), "y_scale": 2 * math.pi * ETA * dt_, "label": f"({d},{L})"})
+        m["report"]["plots"].append(
+            {"name": "slip_rods", "x": "L_box", "x_power": -1, "series": series_slip, "theory": [{"kind": "fit_line"}],
+             "xlabel": "phi_t^(1/3)", "ylabel": f"D_t / D_t^(SE,slip)(d_t) = 2 pi eta d_t D_t (eta = {ETA})",
+             "title": "Slip rods (gamma_ls0 = 0, d >= 2) and the fitted line c0 + c1 phi_t^(1/3)"})
     if zip_:
         m["zip"] = zip_
     return m

@@ -45,6 +45,12 @@ def manifest(plot):
 
 
 # 1. the manifest check
+try:  # a plot of at_x entries, then others: each keeps its own path (an axis-key loop once renamed the items' list)
+    validate_report(dict(BASE, report={"plots": [{"name": "a", "series": [{"stage": "pairs", "scalar": "D", "at_x": 2}]}, GOOD_PLOT,
+                                                 {"stage": "pairs", "table": "t", "x": "time", "y": ["P"]}]}))
+    check(True, "at_x plots followed by other plots pass the manifest check")
+except ManifestError as e:
+    check(False, f"at_x plots followed by other plots are refused: {e}")
 try:
     validate_report(manifest(GOOD_PLOT))
     check(True, "a series list with x_scale, band and a linear line passes the manifest check")
@@ -200,6 +206,19 @@ try:
     check(False, "an at_x entry with several grid points is drawn")
 except ReportError as e:
     check("at_x" in str(e) and "report.plots[0].series[0]" in str(e), f"an at_x entry with several grid points: {e}")
+
+# fit_line: the weighted line through the plot's points, here exactly on a line (d_value is linear in N)
+report.drawn, report.notes = [], []
+ax = draw({"name": "f", "stage": "pairs", "scalar": "D", "x": "N", "select": {"hardness": 1.0}, "theory": [{"kind": "fit_line"}]})
+fit = [line for line in ax.get_lines() if line.get_label().startswith("fit: ")]
+check(len(fit) == 1 and np.allclose(fit[0].get_ydata(), 1 + 1.0 / 100 - fit[0].get_xdata() / 5000) and report.notes
+      and report.notes[0].startswith("fit: c0 = 1.01 ± ") and "c1 = -0.0002 ± " in report.notes[0],
+      f"fit_line recovers the line through the points and notes it: {report.notes}")
+try:
+    validate_report(manifest({"stage": "pairs", "table": "t", "x": "time", "y": ["P"], "theory": [{"kind": "fit_line"}]}))
+    check(False, "fit_line on a curve plot passes the manifest check")
+except ManifestError as e:
+    check("report.plots[0].theory[0].kind" in str(e), f"fit_line on a curve plot: {e}")
 
 ax = draw(dict(GOOD_PLOT, select={"hardness": 2.0}, series=[{"stage": "pairs", "scalar": "D", "label": "2k"},
                                                              {"stage": "pairs", "scalar": "D", "select": {"hardness": 1.0}, "label": "k"}]))

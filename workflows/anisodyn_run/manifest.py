@@ -260,7 +260,7 @@ def substitute(value, point, replica, study):
     return REFERENCE.sub(lambda mo: format_value(lookup(mo.group(1))), value)
 
 
-THEORY_KINDS = {"constant", "linear", "power", "exponential", "free_diffusion", "wertheim", "hasimoto", "periodic_rotation", "tirado_ratio"}
+THEORY_KINDS = {"constant", "linear", "power", "exponential", "free_diffusion", "wertheim", "hasimoto", "periodic_rotation", "tirado_ratio", "fit_line"}
 # The keys each report item reads (report.py): anything else would be silently ignored.
 SCALAR_BLOCK_KEYS = {"stage", "names", "caption"}
 PLOT_KEYS = {"name", "stage", "select", "log", "xlabel", "ylabel", "title", "caption", "theory"}
@@ -270,7 +270,8 @@ SERIES_PLOT_KEYS = (PLOT_KEYS - {"stage"}) | {"x", "x_scale", "x_power", "y_scal
 SERIES_ENTRY_KEYS = {"stage", "scalar", "label", "select", "band", "x_scale", "y_scale", "at_x"}
 THEORY_KEYS = {"constant": {"value"}, "linear": {"intercept", "slope"}, "power": {"prefactor", "exponent"},
                "exponential": {"tau", "amplitude"}, "free_diffusion": {"species", "component"}, "wertheim": {"scalar"},
-               "hasimoto": {"boundary", "band"}, "periodic_rotation": {"band"}, "tirado_ratio": set()}
+               "hasimoto": {"boundary", "band"}, "periodic_rotation": {"band"}, "tirado_ratio": set(),
+               "fit_line": set()}
 THEORY_NUMBERS = {"linear": {"intercept", "slope"}}  # keys a line needs, each a number
 
 
@@ -365,9 +366,9 @@ def validate_report(m):
             # A series list whose entries all give their own x (at_x) has no grid variable on x.
             fixed_x = listed and all(isinstance(e, dict) and "at_x" in e for e in item["series"])
             if fixed_x:
-                for key in ("x", "x_scale", "x_power"):
-                    if key in item:
-                        raise ManifestError(f"{p}.{key}", f"no '{key}': it has no effect, every entry gives its own at_x")
+                for axis_key in ("x", "x_scale", "x_power"):
+                    if axis_key in item:
+                        raise ManifestError(f"{p}.{axis_key}", f"no '{axis_key}': it has no effect, every entry gives its own at_x")
             if "table" not in item and not fixed_x:
                 for axis in ("x", "series") if "scalar" in item else ("x",):
                     value = item.get(axis)
@@ -394,6 +395,9 @@ def validate_report(m):
                     raise ManifestError(f"{p}.theory[{j}].kind", "one of " + ", ".join(sorted(THEORY_KINDS)),
                                         t.get("kind") if isinstance(t, dict) else t)
                 check_keys(t, THEORY_KEYS[t["kind"]] | {"kind", "label"}, f"{p}.theory[{j}]", f"on a '{t['kind']}' line")
+                if t["kind"] == "fit_line" and "table" in item:
+                    raise ManifestError(f"{p}.theory[{j}].kind", "a fitted line ('fit_line') only on a scalar plot (it fits the plotted scalars)",
+                                        t["kind"])
                 if t["kind"] == "hasimoto" and t.get("boundary", "stick") not in ("stick", "slip"):
                     raise ManifestError(f"{p}.theory[{j}].boundary", "'stick' or 'slip'", t.get("boundary"))
                 if "band" in t and not (is_number(t["band"]) and 0 < t["band"] < 1):

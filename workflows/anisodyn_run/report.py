@@ -115,6 +115,7 @@ class Report:
         self.m, self.jobs, self.by_stage, self.campaign, self.out = m, jobs, by_stage, campaign, out
         self.spec = m.get("report", {})
         self.varying = []  # grid variables that differ among the jobs of the current plot
+        self.drawn, self.notes = [], []  # of the current plot: its scalar points, text under it (a fitted line)
 
     def stage_jobs(self, stage, where="report"):
         if stage not in self.by_stage:
@@ -233,6 +234,7 @@ class Report:
     # --- plots ----------------------------------------------------------------------------
     def plot(self, spec, k):
         import matplotlib.pyplot as plt
+        self.drawn, self.notes = [], []  # the scalar points drawn, and text a fitted line leaves under the plot
         where = f"report.plots[{k}]"
         name = spec.get("name", f"plot{k}")
         fig, ax = plt.subplots(figsize=(6.4, 4.6))
@@ -258,7 +260,8 @@ class Report:
         png = f"{name}.png"
         fig.savefig(os.path.join(self.out, png), dpi=110)
         plt.close(fig)
-        return [f"### {spec.get('title', name)}", "", f"![{name}]({png})", ""] + ([spec["caption"], ""] if "caption" in spec else [])
+        return ([f"### {spec.get('title', name)}", "", f"![{name}]({png})", ""] + ([spec["caption"], ""] if "caption" in spec else [])
+                + [line for note in self.notes for line in (note, "")])
 
     def selected_jobs(self, spec, where, select=None):
         jobs = self.stage_jobs(spec.get("stage"), where)
@@ -327,7 +330,10 @@ class Report:
             ax.set_xticks(range(len(grid[x])), [format_value(v) for v in grid[x]])
         xs = np.array(sorted(set(xs)))
         for t in spec.get("theory", []):
-            self.theory(ax, t, None, xs, where)
+            if t.get("kind") == "fit_line":
+                self.fit_line(ax, t, where)
+            else:
+                self.theory(ax, t, None, xs, where)
 
     def scalar_points(self, item, where, x, scale, select, constant_allowed=False):
         """(x coordinate, value, SE, job) of item's scalar for every selected grid point of item's stage; the
@@ -385,12 +391,31 @@ class Report:
         """Grid value → x coordinate: (value × factor) ** power."""
         return (lambda v: (v * factor) ** power) if power != 1.0 else (lambda v: v * factor)
 
-    @staticmethod
-    def draw_points(ax, points, label):
+    def draw_points(self, ax, points, label):
         import numpy as np
         a = np.array(sorted(points, key=lambda p: p[0]), dtype=float)
         ax.errorbar(a[:, 0], a[:, 1], yerr=np.nan_to_num(a[:, 2]), marker="o", ms=4, capsize=2, label=label)
+        self.drawn += [tuple(row) for row in a]  # for a fitted line over the plot's points
         return list(a[:, 0])
+
+    def fit_line(self, ax, t, where):
+        """The weighted least-squares line c0 + c1 x through every point the scalar plot drew (weights 1/SE²,
+        or equal when an SE is missing), with the parameters' standard errors from the covariance, scaled by
+        the reduced chi² when it exceeds 1. Drawn, and noted under the plot."""
+        import numpy as np
+        if len(self.drawn) < 3:
+            raise ReportError(f"{where}.theory: a fitted line needs at least 3 points, the plot has {len(self.drawn)}")
+        x, y, e = (np.array(c, dtype=float) for c in zip(*self.drawn))
+        w = 1.0 / e ** 2 if np.all(np.isfinite(e) & (e > 0)) else np.ones_like(x)
+        A = np.vstack([np.ones_like(x), x]).T
+        cov = np.linalg.inv(A.T @ (A * w[:, None]))
+        c = cov @ (A.T @ (w * y))
+        chi2 = float(np.sum(w * (y - A @ c) ** 2) / (len(x) - 2))
+        err = np.sqrt(np.diag(cov) * max(1.0, chi2))
+        line = np.linspace(min(0.0, x.min()), x.max(), 100)
+        text = f"fit: c0 = {c[0]:.4g} ± {err[0]:.2g}, c1 = {c[1]:.4g} ± {err[1]:.2g} ({len(x)} points, reduced chi2 {chi2:.2g})"
+        ax.plot(line, c[0] + c[1] * line, color="k", lw=1, ls=":", label=t.get("label", text))
+        self.notes.append(text)
 
     def axis_value(self, var, value):
         """A grid value as a plot coordinate: the number, or the position in the grid's list."""
