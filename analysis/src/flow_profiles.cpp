@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "anisodyn/core/error.hpp"
+#include "anisodyn/analysis/replica_statistics.hpp"
 #include "anisodyn/io/h5md.hpp"
 
 namespace anisodyn::analysis {
@@ -24,19 +25,23 @@ void add_rows(const io::H5mdReader::Series& s, std::size_t begin, std::size_t en
     for (std::size_t k = 0; k < s.width; ++k) sum[k] += s.value[row * s.width + k];
 }
 
-ProfileSums total(const std::vector<ProfileSums>& samples, std::size_t leave_out) {
-  ProfileSums t;
-  for (std::size_t s = 0; s < samples.size(); ++s) {
-    if (s == leave_out) continue;
-    const ProfileSums& x = samples[s];
-    t.rows += x.rows;
-    auto add = [](std::vector<double>& a, const std::vector<double>& b) {
-      a.resize(b.size(), 0.0);
-      for (std::size_t k = 0; k < b.size(); ++k) a[k] += b[k];
-    };
-    add(t.z_count, x.z_count), add(t.z_vx, x.z_vx), add(t.r_count, x.r_count), add(t.r_mid_count, x.r_mid_count), add(t.r_mid_vx, x.r_mid_vx);
-  }
-  return t;
+/// A sample's sums as one vector, rows first, then the five profiles: the form of the shared
+/// jackknife (replica_statistics.hpp). Every estimate below is a ratio of sums, so the mean of the
+/// samples gives the same estimates as their total.
+std::vector<double> flatten(const ProfileSums& x) {
+  std::vector<double> v{x.rows};
+  for (const auto* part : {&x.z_count, &x.z_vx, &x.r_count, &x.r_mid_count, &x.r_mid_vx}) v.insert(v.end(), part->begin(), part->end());
+  return v;
+}
+
+/// The inverse of flatten, for sums of the same bins as `shape`.
+ProfileSums unflatten(const std::vector<double>& v, const ProfileSums& shape) {
+  ProfileSums x = shape;
+  x.rows = v[0];
+  std::size_t at = 1;
+  for (auto* part : {&x.z_count, &x.z_vx, &x.r_count, &x.r_mid_count, &x.r_mid_vx})
+    for (double& value : *part) value = v[at++];
+  return x;
 }
 
 double ratio(double a, double b) { return b > 0.0 ? a / b : NAN; }
@@ -50,7 +55,7 @@ struct Estimates {
 
 Estimates estimate(const FlowGeometry& g, const ProfileSums& t, const std::optional<SlipFitSettings>& slip) {
   Estimates e;
-  const double rows = static_cast<double>(t.rows);
+  const double rows = t.rows;
   for (std::size_t k = 0; k < t.z_count.size(); ++k) {
     e.density_z.push_back(t.z_count[k] / rows / (g.area * g.z_bin));
     e.vx_z.push_back(ratio(t.z_vx[k], t.z_count[k]));
@@ -83,17 +88,6 @@ Estimates estimate(const FlowGeometry& g, const ProfileSums& t, const std::optio
   return e;
 }
 
-/// Jackknife standard error of x over the leave-one-out values x_s (n samples).
-double jackknife(const std::vector<double>& x_s) {
-  const double n = static_cast<double>(x_s.size());
-  if (n < 2) return NAN;
-  double mean = 0.0;
-  for (double v : x_s) mean += v / n;
-  double sum = 0.0;
-  for (double v : x_s) sum += (v - mean) * (v - mean);
-  return std::sqrt((n - 1.0) / n * sum);
-}
-
 }  // namespace
 
 RunProfiles read_profiles(const std::string& path, std::size_t blocks, const std::function<bool(double)>& keep) {
@@ -123,7 +117,7 @@ RunProfiles read_profiles(const std::string& path, std::size_t blocks, const std
   for (std::size_t b = 0; b < blocks; ++b) {
     const std::size_t begin = kept[kept.size() * b / blocks], end = kept[kept.size() * (b + 1) / blocks - 1] + 1;
     ProfileSums s;
-    s.rows = end - begin;
+    s.rows = static_cast<double>(end - begin);
     std::vector<double>* target[] = {&s.z_count, &s.z_vx, &s.r_count, &s.r_mid_count, &s.r_mid_vx};
     for (std::size_t k = 0; k < names.size(); ++k)
       if (series[k].rows()) add_rows(series[k], begin, end, *target[k]);
@@ -135,42 +129,45 @@ RunProfiles read_profiles(const std::string& path, std::size_t blocks, const std
 FlowResult compute_flow(const FlowGeometry& g, const std::vector<ProfileSums>& samples, const std::optional<SlipFitSettings>& slip) {
   FlowResult r;
   r.samples = samples.size();
-  const ProfileSums all = total(samples, samples.size());
-  r.rows = all.rows;
-  const Estimates e = estimate(g, all, slip);
-  std::vector<Estimates> loo;
-  for (std::size_t s = 0; s < samples.size() && samples.size() > 1; ++s) loo.push_back(estimate(g, total(samples, s), slip));
-  auto errors = [&](auto member, std::size_t k) {
-    std::vector<double> x;
-    for (const Estimates& l : loo) x.push_back((l.*member)[k]);
-    return jackknife(x);
+  CurveSamples sums;
+  for (const ProfileSums& x : samples) {
+    sums.add(flatten(x));
+    r.rows += static_cast<std::size_t>(x.rows);
+  }
+  const ProfileSums& shape = samples.front();
+  const std::size_t nz = shape.z_count.size(), nr = shape.r_count.size();
+  // Every reported estimate as one vector: density_z, v_x(z), density_r, v_x(r), then the scalars.
+  const auto estimates = [&](const std::vector<double>& mean) {
+    const Estimates e = estimate(g, unflatten(mean, shape), slip);
+    std::vector<double> out;
+    for (const auto* part : {&e.density_z, &e.vx_z, &e.density_r, &e.vx_r}) out.insert(out.end(), part->begin(), part->end());
+    out.insert(out.end(), {e.v_mean, e.slip, e.gradient, e.v_top, e.shear_rate});
+    return out;
   };
-  auto scalar = [&](double Estimates::*member) -> ValueError {
-    std::vector<double> x;
-    for (const Estimates& l : loo) x.push_back(l.*member);
-    return {e.*member, jackknife(x)};
-  };
-  for (std::size_t k = 0; k < e.density_z.size(); ++k) {
+  const CurveEstimate est = jackknife_curve(sums, estimates);
+  auto at = [&](std::size_t k) { return ValueError{est.value[k], est.error[k]}; };
+  for (std::size_t k = 0; k < nz; ++k) {
     r.z.push_back((static_cast<double>(k) + 0.5) * g.z_bin);
-    r.density_z.push_back(e.density_z[k]);
-    r.density_z_se.push_back(errors(&Estimates::density_z, k));
-    r.vx_z.push_back(e.vx_z[k]);
-    r.vx_z_se.push_back(errors(&Estimates::vx_z, k));
+    r.density_z.push_back(est.value[k]);
+    r.density_z_se.push_back(est.error[k]);
+    r.vx_z.push_back(est.value[nz + k]);
+    r.vx_z_se.push_back(est.error[nz + k]);
   }
-  for (std::size_t k = 0; k < e.density_r.size(); ++k) {
+  for (std::size_t k = 0; k < nr; ++k) {
     r.r.push_back((static_cast<double>(k) + 0.5) * g.r_bin);
-    r.density_r.push_back(e.density_r[k]);
-    r.density_r_se.push_back(errors(&Estimates::density_r, k));
-    r.vx_r.push_back(e.vx_r[k]);
-    r.vx_r_se.push_back(errors(&Estimates::vx_r, k));
+    r.density_r.push_back(est.value[2 * nz + k]);
+    r.density_r_se.push_back(est.error[2 * nz + k]);
+    r.vx_r.push_back(est.value[2 * nz + nr + k]);
+    r.vx_r_se.push_back(est.error[2 * nz + nr + k]);
   }
-  if (!e.density_z.empty()) r.v_mean = scalar(&Estimates::v_mean);
-  if (slip && !e.density_z.empty()) {
-    r.slip_length = scalar(&Estimates::slip);
-    r.gradient = scalar(&Estimates::gradient);
-    r.v_top = scalar(&Estimates::v_top);
-    r.shear_rate = scalar(&Estimates::shear_rate);
-    r.fit_bins = e.fit_bins;
+  const std::size_t scalars = 2 * nz + 2 * nr;
+  if (nz > 0) r.v_mean = at(scalars);
+  if (slip && nz > 0) {
+    r.slip_length = at(scalars + 1);
+    r.gradient = at(scalars + 2);
+    r.v_top = at(scalars + 3);
+    r.shear_rate = at(scalars + 4);
+    r.fit_bins = estimate(g, unflatten(mean_curve(sums.samples()), shape), slip).fit_bins;
   }
   return r;
 }

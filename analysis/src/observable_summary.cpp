@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "anisodyn/core/error.hpp"
+#include "anisodyn/analysis/replica_statistics.hpp"
 #include "anisodyn/io/h5md.hpp"
 
 namespace anisodyn::analysis {
@@ -42,26 +43,37 @@ std::vector<Sums> samples(const std::vector<ObservableRows>& runs, std::size_t b
   return out;
 }
 
-/// The statistic of the pooled samples, with the jackknife error over them.
+/// A sample's sums as one vector (n, Σt, Σt², Σx, Σtx), the form of the shared jackknife
+/// (replica_statistics.hpp); the mean and the slope are the same for the mean of samples as for
+/// their total.
+std::vector<double> flatten(const Sums& s) {
+  std::vector<double> v{s.n, s.t, s.tt};
+  v.insert(v.end(), s.x.begin(), s.x.end());
+  v.insert(v.end(), s.tx.begin(), s.tx.end());
+  return v;
+}
+
+Sums unflatten(const std::vector<double>& v) {
+  Sums s;
+  s.n = v[0], s.t = v[1], s.tt = v[2];
+  const std::size_t width = (v.size() - 3) / 2;
+  s.x.assign(v.begin() + 3, v.begin() + 3 + static_cast<std::ptrdiff_t>(width));
+  s.tx.assign(v.begin() + 3 + static_cast<std::ptrdiff_t>(width), v.end());
+  return s;
+}
+
+/// The statistic of every component of the pooled samples, with the jackknife error over them.
 std::vector<Estimate> pooled(const std::vector<Sums>& parts, const std::function<double(const Sums&, std::size_t)>& stat) {
-  Sums all;
-  for (const Sums& s : parts) all.add(s);
-  std::vector<Estimate> out(all.x.size());
-  const double n = static_cast<double>(parts.size());
-  for (std::size_t k = 0; k < out.size(); ++k) {
-    out[k].value = stat(all, k);
-    std::vector<double> loo;
-    for (std::size_t leave = 0; leave < parts.size(); ++leave) {
-      Sums rest;
-      for (std::size_t s = 0; s < parts.size(); ++s)
-        if (s != leave) rest.add(parts[s]);
-      loo.push_back(stat(rest, k));
-    }
-    double mean = 0.0, sum = 0.0;
-    for (double v : loo) mean += v / n;
-    for (double v : loo) sum += (v - mean) * (v - mean);
-    out[k].error = n > 1 ? std::sqrt((n - 1.0) / n * sum) : NAN;
-  }
+  CurveSamples samples;
+  for (const Sums& s : parts) samples.add(flatten(s));
+  const auto curve = jackknife_curve(samples, [&](const std::vector<double>& mean) {
+    const Sums s = unflatten(mean);
+    std::vector<double> out(s.x.size());
+    for (std::size_t k = 0; k < out.size(); ++k) out[k] = stat(s, k);
+    return out;
+  });
+  std::vector<Estimate> out(curve.value.size());
+  for (std::size_t k = 0; k < out.size(); ++k) out[k] = {curve.value[k], curve.error[k]};
   return out;
 }
 
@@ -95,12 +107,10 @@ std::vector<Estimate> observable_drifts(const std::vector<ObservableRows>& runs,
   // mean of the slopes and its standard error.
   const std::vector<Sums> each = samples(runs, 1);
   std::vector<Estimate> out(each.front().x.size());
-  const double n = static_cast<double>(each.size());
   for (std::size_t k = 0; k < out.size(); ++k) {
-    double mean = 0.0, sum = 0.0;
-    for (const Sums& s : each) mean += s.slope(k) / n;
-    for (const Sums& s : each) sum += (s.slope(k) - mean) * (s.slope(k) - mean);
-    out[k] = {mean, std::sqrt(sum / (n - 1.0) / n)};
+    std::vector<double> slopes;
+    for (const Sums& s : each) slopes.push_back(s.slope(k));
+    out[k] = mean_and_error(slopes);
   }
   return out;
 }

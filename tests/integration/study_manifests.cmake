@@ -1,6 +1,5 @@
-# One test per study manifest, integration_study_<name>: manifests/quickstart.json, the studies that
-# are their own smoke (spec 60: C0, dpd_liquid_checks) and every manifests/*-smoke.json (a new smoke
-# manifest is picked up at the next build: CONFIGURE_DEPENDS),
+# One test per study manifest, integration_study_<name>: manifests/quickstart.json and every
+# manifests/*-smoke.json (a new smoke manifest is picked up at the next build: CONFIGURE_DEPENDS),
 # so that `ctest -j2` runs two manifests at a time instead of all of them in series.
 #
 # Each runs the runner with 2 workers (engines are single-threaded), so at most 4 engines share the
@@ -18,7 +17,7 @@
 set(_slow_smoke_manifests)
 set(_workers 2)
 file(GLOB _smoke_manifests CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/manifests/*-smoke.json)
-set(_manifests ${CMAKE_SOURCE_DIR}/manifests/quickstart.json ${CMAKE_SOURCE_DIR}/manifests/dpd_liquid_checks.json ${_smoke_manifests})
+set(_manifests ${CMAKE_SOURCE_DIR}/manifests/quickstart.json ${_smoke_manifests})
 foreach(_manifest ${_manifests})
   get_filename_component(_study ${_manifest} NAME_WLE)
   set(_slow)

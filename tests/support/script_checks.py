@@ -1,5 +1,5 @@
 """The ok/FAIL lines of an integration script: check(cond, what) prints one line per check and keeps
-the failures; finish() prints their count and exits 1 if there were any."""
+the failures; finish() prints their count and fails (an assertion, exit 1) if there were any."""
 import sys
 
 failures = []
@@ -13,4 +13,5 @@ def check(cond, what):
 
 def finish():
     print(f"{len(failures)} failed")
-    sys.exit(1 if failures else 0)
+    assert not failures, f"{len(failures)} check(s) failed: {failures}"
+    sys.exit(0)

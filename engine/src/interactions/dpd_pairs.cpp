@@ -64,14 +64,15 @@ void DpdForceField::update_list(const State& s, std::size_t n) {
 
 namespace {
 
-/// Σ_q x[q] y[q] with eight partial sums combined in a fixed order: the association is the
+/// Σ_q term(q) with eight partial sums combined in a fixed order: the association is the
 /// source's, so the sum has the same bits on any thread, and the loop vectorises.
-double fixed_dot(const double* x, const double* y, std::size_t n) {
+template <class Term>
+double fixed_sum(std::size_t n, Term term) {
   double acc[8] = {};
   std::size_t q = 0;
   for (; q + 8 <= n; q += 8)
-    for (std::size_t l = 0; l < 8; ++l) acc[l] += x[q + l] * y[q + l];
-  for (std::size_t l = 0; q + l < n; ++l) acc[l] += x[q + l] * y[q + l];
+    for (std::size_t l = 0; l < 8; ++l) acc[l] += term(q + l);
+  for (std::size_t l = 0; q + l < n; ++l) acc[l] += term(q + l);
   return ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
 }
 
@@ -162,16 +163,14 @@ void DpdForceField::row_forces(const RowTask* tasks, std::size_t count, std::siz
     // The group's sums (one call holds the rows of one group), each a fixed-order sum over its pairs.
     double* sum = partial_.data() + kSums * (tasks[0].k / kRowsPerGroup);
     const double* pair_energy = en.data();
-    double energy[8] = {};
-    std::size_t q = 0;
-    for (; q + 8 <= inside; q += 8)
-      for (std::size_t l = 0; l < 8; ++l) energy[l] += pair_energy[q + l];
-    for (std::size_t l = 0; q + l < inside; ++l) energy[l] += pair_energy[q + l];
-    sum[0] += ((energy[0] + energy[1]) + (energy[2] + energy[3])) + ((energy[4] + energy[5]) + (energy[6] + energy[7]));
+    sum[0] += fixed_sum(inside, [&](std::size_t q) { return pair_energy[q]; });
     const double* parts[3] = {pc.data(), pd.data(), pr.data()};
     const double* geometry[6] = {q0.data(), q1.data(), q2.data(), q3.data(), q4.data(), q5.data()};
     for (int n = 0; n < 3; ++n)
-      for (int e = 0; e < 6; ++e) sum[1 + 6 * n + e] += fixed_dot(parts[n], geometry[e], inside);
+      for (int e = 0; e < 6; ++e) {
+        const double *x = parts[n], *y = geometry[e];
+        sum[1 + 6 * n + e] += fixed_sum(inside, [&](std::size_t q) { return x[q] * y[q]; });
+      }
   }
   double* force = force_.data();
   for (std::size_t q = 0; q < inside; ++q) {

@@ -8,7 +8,8 @@
 //
 // Samples are the replicas (or, for a single replica, `blocks` contiguous blocks of its rows). Every
 // value comes from the pooled sums of all samples; its standard error is the jackknife over the
-// samples (leave one out), which also serves the ratios v = Σv/Σn and b = a/G.
+// samples (leave one out, replica_statistics.hpp's jackknife_curve), which also serves the ratios
+// v = Σv/Σn and b = a/G.
 //
 // Slip length (spec 30 §6): a least-squares line v_x = G z + a through the slab velocities whose
 // centres lie in [fit_from, fit_to]; b = a/G (the distance below z = 0 at which the line reaches
@@ -32,7 +33,7 @@ struct SlipFitSettings {
 
 /// One sample's sums over its rows (each row's per-step means, summed), and the bin geometry.
 struct ProfileSums {
-  std::size_t rows = 0;
+  double rows = 0;
   std::vector<double> z_count, z_vx, r_count, r_mid_count, r_mid_vx;
 };
 

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "anisodyn/analysis/replica_statistics.hpp"
+
 namespace anisodyn::analysis {
 
 struct ObservableRows {
@@ -22,9 +24,6 @@ struct ObservableRows {
 /// such observable or no row in the window.
 ObservableRows read_rows(const std::string& path, const std::string& name, const std::function<bool(double)>& keep);
 
-struct Estimate {
-  double value = 0.0, error = 0.0;
-};
 
 /// Per component: the mean over all rows of all runs, with the error over the samples.
 std::vector<Estimate> observable_means(const std::vector<ObservableRows>& runs, std::size_t blocks);
