@@ -86,44 +86,49 @@ void DpdForceField::row_forces(const RowTask* tasks, std::size_t count, std::siz
   // cut-off, gathered without a branch (half of the candidates are, at random), then their forces
   // in a loop the compiler vectorises, then the sums.
   thread_local std::vector<double> dx, dy, dz, r2, theta, e0, e1, e2, rr, pc, pd, pr, en, q0, q1, q2, q3, q4, q5;
-  thread_local std::vector<std::uint32_t> task_of, partner, within, id_a, id_b, kk, jj;
+  thread_local std::vector<std::uint32_t> task_of, within, id_a, id_b, kk, jj;
   std::size_t candidates = 0;
   for (std::size_t t = 0; t < count; ++t) candidates += tasks[t].m_end - tasks[t].m_begin;
   if (dx.size() < candidates) {
     for (auto* v : {&dx, &dy, &dz, &r2, &theta, &e0, &e1, &e2, &rr, &pc, &pd, &pr, &en, &q0, &q1, &q2, &q3, &q4, &q5}) v->resize(2 * candidates);
-    for (auto* v : {&task_of, &partner, &within, &id_a, &id_b, &kk, &jj}) v->resize(2 * candidates);
+    for (auto* v : {&task_of, &within, &id_a, &id_b, &kk, &jj}) v->resize(2 * candidates);
   }
-  std::size_t c = 0;
-  for (std::size_t t = 0; t < count; ++t) {
-    const RowTask& task = tasks[t];
-    const double xk = x_[task.k], yk = y_[task.k], zk = z_[task.k];
-    const std::int32_t* row = list_.partners_above(task.k).data();
-    for (std::size_t m = task.m_begin; m < task.m_end; ++m, ++c) {
-      const auto j = static_cast<std::size_t>(row[m]);
-      // r_kj = r_k − r_j, minimum image
-      double ddx = xk - x_[j], ddy = yk - y_[j], ddz = zk - z_[j];
-      ddx -= L.x() * std::nearbyint(ddx * inv.x());
-      ddy -= L.y() * std::nearbyint(ddy * inv.y());
-      ddz -= L.z() * std::nearbyint(ddz * inv.z());
-      dx[c] = ddx, dy[c] = ddy, dz[c] = ddz;
-      r2[c] = ddx * ddx + ddy * ddy + ddz * ddz;
-      task_of[c] = static_cast<std::uint32_t>(t);
-      kk[c] = static_cast<std::uint32_t>(task.k);
-      partner[c] = static_cast<std::uint32_t>(j);
-    }
-  }
-  // Compacted, in candidate order: the pairs within the cut-off (their separations overwrite the
-  // candidates' from the front, which the loop has already read).
+  // The candidates within the cut-off, in candidate order, written at the next free place without a
+  // branch (the place advances only for those inside; about half are, at random). Their task and
+  // candidate number only where pairs go to slots (cross_only): the fewer stores, the faster.
   std::size_t inside = 0;
-  for (std::size_t q = 0; q < candidates; ++q) {
-    const std::uint32_t k = kk[q];  // kk[inside] is written below: inside ≤ q, so kk[q] is still the candidate's
-    within[inside] = static_cast<std::uint32_t>(q);
-    kk[inside] = k;
-    jj[inside] = partner[q];
-    id_a[inside] = id_[k];
-    id_b[inside] = id_[partner[q]];
-    dx[inside] = dx[q], dy[inside] = dy[q], dz[inside] = dz[q], r2[inside] = r2[q];
-    inside += r2[q] < rc2 ? 1 : 0;
+  const auto keep_within = [&]<bool kSlots>() {
+    double *__restrict sx = dx.data(), *__restrict sy = dy.data(), *__restrict sz = dz.data(), *__restrict s2 = r2.data();
+    std::uint32_t *__restrict pk = kk.data(), *__restrict pj = jj.data(), *__restrict pt = task_of.data(), *__restrict pw = within.data();
+    const double *__restrict px = x_.data(), *__restrict py = y_.data(), *__restrict pz = z_.data();
+    std::size_t c = 0;
+    for (std::size_t t = 0; t < count; ++t) {
+      const RowTask& task = tasks[t];
+      const double xk = px[task.k], yk = py[task.k], zk = pz[task.k];
+      const auto k = static_cast<std::uint32_t>(task.k);
+      const std::int32_t* row = list_.partners_above(task.k).data();
+      for (std::size_t m = task.m_begin; m < task.m_end; ++m, ++c) {
+        const auto j = static_cast<std::uint32_t>(row[m]);
+        // r_kj = r_k − r_j, minimum image
+        double ddx = xk - px[j], ddy = yk - py[j], ddz = zk - pz[j];
+        ddx -= L.x() * std::nearbyint(ddx * inv.x());
+        ddy -= L.y() * std::nearbyint(ddy * inv.y());
+        ddz -= L.z() * std::nearbyint(ddz * inv.z());
+        const double d2 = ddx * ddx + ddy * ddy + ddz * ddz;
+        sx[inside] = ddx, sy[inside] = ddy, sz[inside] = ddz, s2[inside] = d2;
+        pk[inside] = k, pj[inside] = j;
+        if constexpr (kSlots) pt[inside] = static_cast<std::uint32_t>(t), pw[inside] = static_cast<std::uint32_t>(c);
+        inside += d2 < rc2 ? 1 : 0;
+      }
+    }
+  };
+  if (cross_only) keep_within.template operator()<true>();
+  else keep_within.template operator()<false>();
+  {
+    const std::uint32_t *__restrict ids = id_.data(), *__restrict pk = kk.data(), *__restrict pj = jj.data();
+    std::uint32_t *__restrict ia = id_a.data(), *__restrict ib = id_b.data();
+#pragma omp simd
+    for (std::size_t q = 0; q < inside; ++q) ia[q] = ids[pk[q]], ib[q] = ids[pj[q]];
   }
   // The noise of all pairs within the cut-off in one batch (vectorised: core/pair_noise.hpp).
   noise_.normals(noise_step_, id_a.data(), id_b.data(), inside, theta.data());
@@ -179,7 +184,7 @@ void DpdForceField::row_forces(const RowTask* tasks, std::size_t count, std::siz
     const double f[3] = {total * e0[q], total * e1[q], total * e2[q]};
     if (cross_only) {
       // Into the pair's slot, for the owner of j.
-      const RowTask& task = tasks[task_of[within[q]]];
+      const RowTask& task = tasks[task_of[q]];
       double* slot = slot_force_.get() + 3 * (list_.first_pair(k) + task.m_begin + (within[q] - task.first_candidate));
       slot[0] = f[0], slot[1] = f[1], slot[2] = f[2];
       continue;
@@ -236,7 +241,7 @@ void DpdForceField::operator()(const State& s, BodyForces& out) {
     slot_capacity_ = 3 * list_.pairs() + 3 * list_.pairs() / 8;
     slot_force_ = std::make_unique_for_overwrite<double[]>(slot_capacity_);
   }
-  force_.assign(3 * n, 0.0);
+  force_.resize(3 * n);  // zeroed by the block's thread: only it writes there
   const std::size_t groups = (n + kRowsPerGroup - 1) / kRowsPerGroup;
   partial_.resize(kSums * groups);
 
@@ -266,6 +271,7 @@ void DpdForceField::operator()(const State& s, BodyForces& out) {
       return k == blocks ? n : std::min(n, lo * kRowsPerGroup);
     };
     const std::size_t begin = block_begin(b), end = block_begin(b + 1);
+    std::fill(force_.begin() + static_cast<std::ptrdiff_t>(3 * begin), force_.begin() + static_cast<std::ptrdiff_t>(3 * end), 0.0);
     if (blocks > 1) rows(begin, end, end, true, s.box);
 #pragma omp barrier
     const std::size_t own_slots = list_.first_pair(begin);

@@ -8,8 +8,9 @@
 //
 // Why Philox4x32 rather than KeyedRandom's Philox4x64: a DPD step draws one θ for each of some
 // 10⁵ pairs, and the 32-bit multiplies of Philox4x32 vectorise (eight or sixteen pairs at once)
-// where the 64-bit ones do not. normals() draws a batch in loops the compiler vectorises; the one
-// pair of operator() goes through the same code, so both give the same bits.
+// where the 64-bit ones do not. normals() draws a batch sixteen pairs at a time (the rounds with
+// AVX-512 intrinsics where the compiler targets it, else a loop it vectorises: integer arithmetic,
+// the same bits); the one pair of operator() goes through the same code.
 //
 // Ids must be below 2³² (a configuration of more particles than that is not a DPD run).
 #include <cstddef>
