@@ -15,6 +15,8 @@ DpdProtocol parse_dpd_protocol(tool::ConfigNode& cfg) {
   p.liquid.gamma = liquid.non_negative("gamma", p.liquid.gamma);
   p.liquid.cutoff = liquid.positive("cutoff", p.liquid.cutoff);
   p.skin = liquid.positive("skin", p.skin);
+  p.velocity_lambda = cfg.non_negative("velocity_lambda", p.velocity_lambda);
+  if (p.velocity_lambda > 1.0) cfg.fail("velocity_lambda", "expected Groot–Warren's λ in [0, 1] (½: LAMMPS's scheme; they used 0.65)");
   if (cfg.has("velocities"))
     p.velocities = cfg.choice("velocities", {"input", "maxwell_boltzmann"}) == "input" ? DpdProtocol::Velocities::Input
                                                                                       : DpdProtocol::Velocities::MaxwellBoltzmann;

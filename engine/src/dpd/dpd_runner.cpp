@@ -167,6 +167,7 @@ DpdRunner::DpdRunner(State& state, const DpdProtocol& protocol, const std::strin
   if (protocol_.profiles && protocol_.profiles->radial_bin > 0.0 && !colloids_)
     throw InputError(config_file, "profiles.radial_bin", "expected colloids: the radial profiles are around the first colloid");
   integrator_ = std::make_unique<RigidBodyNve>(protocol_.time_step, inertia_, [this](const State& s, BodyForces& out) { forces(s, out); });
+  integrator_->set_velocity_prediction(protocol_.velocity_lambda);
   select_frame_particles(config_file);
 
   if (protocol_.green_kubo)
@@ -177,6 +178,7 @@ DpdRunner::DpdRunner(State& state, const DpdProtocol& protocol, const std::strin
   const DpdParameters& d = protocol_.liquid;
   summary_["liquid"] = {{"a", d.a}, {"gamma", d.gamma}, {"kT", d.kT}, {"cutoff", d.cutoff}, {"skin", protocol_.skin},
                         {"noise_amplitude", std::sqrt(2.0 * d.gamma * d.kT)}};
+  summary_["velocity_lambda"] = protocol_.velocity_lambda;
   summary_["particles"] = state_.particles.size();
   if (colloids_) {
     nlohmann::json bodies = nlohmann::json::object();
@@ -430,7 +432,7 @@ void DpdRunner::observe(io::H5mdWriter& out, std::int64_t step, double t) {
   attr("pressure", "kT/r_c^3", "trace/3 of the pressure tensor (the sum of the four parts), mean over the row's steps");
   attr("pressure_tensor_kinetic", "kT/r_c^3", "sum of m v v / V" + tensor);
   attr("pressure_tensor_conservative", "kT/r_c^3", "sum over pairs of r_ij F^C_ij / V" + tensor);
-  attr("pressure_tensor_dissipative", "kT/r_c^3", "sum over pairs of r_ij F^D_ij / V (half-step velocities)" + tensor);
+  attr("pressure_tensor_dissipative", "kT/r_c^3", "sum over pairs of r_ij F^D_ij / V (the velocities the forces see: half-step, or predicted with velocity_lambda)" + tensor);
   attr("pressure_tensor_random", "kT/r_c^3", "sum over pairs of r_ij F^R_ij / V" + tensor);
   attr("potential_energy", "kT", "potential energy per particle: sum of a r_c (1 - r/r_c)^2 / 2 over liquid pairs plus the colloid cores, mean over the row's steps");
   if (walls_) {

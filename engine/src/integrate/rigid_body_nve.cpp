@@ -131,6 +131,31 @@ void RigidBodyNve::evaluate_forces(const State& state) {
   have_forces_ = true;
 }
 
+void RigidBodyNve::evaluate_forces_predicted(State& state) {
+  Particles& p = state.particles;
+  const std::size_t n = p.size();
+  const bool angular = p.has_angular_momenta();
+  const double ahead = (lambda_ - 0.5) * dt_;  // forces_ still holds F(t)
+  half_step_v_.resize(n);
+  half_step_l_.resize(angular ? n : 0);
+#pragma omp parallel for schedule(static) if (n >= kParallelBodies)
+  for (std::size_t i = 0; i < n; ++i) {
+    const BodyInertia& b = inertia_[static_cast<std::size_t>(p.species[i])];
+    half_step_v_[i] = p.velocity(i);
+    if (angular) half_step_l_[i] = p.angular_momentum(i);
+    if (b.fixed) continue;
+    p.set_velocity(i, half_step_v_[i] + (ahead / b.mass) * forces_.force[i]);
+    if (angular)
+      p.set_angular_momentum(i, without_frozen_axes(b.principal_moments, p.orientation(i), half_step_l_[i] + ahead * forces_.torque[i]));
+  }
+  evaluate_forces(state);
+#pragma omp parallel for schedule(static) if (n >= kParallelBodies)
+  for (std::size_t i = 0; i < n; ++i) {
+    p.set_velocity(i, half_step_v_[i]);
+    if (angular) p.set_angular_momentum(i, half_step_l_[i]);
+  }
+}
+
 double RigidBodyNve::step(State& state) {
   Particles& p = state.particles;
   if (!p.has_velocities()) p.carry_velocities();
@@ -167,8 +192,10 @@ double RigidBodyNve::step(State& state) {
     p.set_angular_momentum(i, L);
   }
 
-  // Forces of the new configuration (with the half-step momenta in the state), then the second half kick.
-  evaluate_forces(state);
+  // Forces of the new configuration (with the half-step momenta in the state, or the predicted
+  // ones), then the second half kick.
+  if (lambda_ == 0.5) evaluate_forces(state);
+  else evaluate_forces_predicted(state);
 #pragma omp parallel for schedule(static) if (n >= kParallelBodies)
   for (std::size_t i = 0; i < n; ++i) {
     const BodyInertia& b = inertia_[static_cast<std::size_t>(p.species[i])];

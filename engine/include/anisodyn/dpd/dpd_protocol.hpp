@@ -33,6 +33,9 @@ struct DpdProtocol : run::TimeStepRun {
   DpdParameters liquid;
   std::vector<std::string> liquid_species;  // empty: every species of the input
   double skin = 0.3;
+  /// Groot–Warren's λ: the forces of a step see the predicted velocities v(t) + λ Δt F(t)/m
+  /// (integrate/rigid_body_nve.hpp); ½ is LAMMPS's scheme (spec 30 §2, Decision 3).
+  double velocity_lambda = 0.5;
   /// Where the starting velocities come from: the input's (it must have them), or Maxwell–Boltzmann
   /// at kT with zero total momentum. Default: the input's when it has them.
   enum class Velocities { Default, Input, MaxwellBoltzmann } velocities = Velocities::Default;

@@ -14,6 +14,12 @@
 //   4. forces at the new positions and orientations (with the half-step v and L in the state)
 //   5. half kick with the new forces, as in 1
 //   6. the thermostat hook, if any.
+// With a velocity prediction λ ≠ ½ (set_velocity_prediction; Groot & Warren, J. Chem. Phys. 107,
+// 4423 (1997), their modified velocity Verlet), step 4 sees v + (λ − ½) δt F/m and
+// L + (λ − ½) δt τ in place of the half-step v and L, that is v(t) + λ δt F(t)/m: the prediction of
+// velocity-dependent forces (DPD's dissipative force). The half-step v and L are kept and put back
+// before step 5, so the scheme differs from the plain one only in the forces of velocity-dependent
+// fields; for λ = ½ it is the plain scheme, bit for bit.
 // The kick of the paper, p += (δt/2) 2 S(q) (0, τ_body), is the lab-frame kick L += (δt/2) τ at
 // fixed q (S(q) is orthogonal), which is how it is done here. Each R_k keeps the lab-frame angular
 // momentum exactly (its Hamiltonian is invariant under rotations of the lab), so step 3 changes
@@ -75,9 +81,14 @@ class RigidBodyNve : public Integrator {
   void restore_forces(BodyForces forces);
   /// Makes the next step evaluate the forces first (after the state was changed outside step()).
   void invalidate_forces() { have_forces_ = false; }
+  /// Groot–Warren's λ (above): the forces of a step see v(t) + λ δt F(t)/m; ½ by default.
+  void set_velocity_prediction(double lambda) { lambda_ = lambda; }
 
  private:
   void evaluate_forces(const State& state);
+  /// Evaluates the forces with the predicted v and L in the state (λ ≠ ½), then puts back the
+  /// half-step ones.
+  void evaluate_forces_predicted(State& state);
   void check_species(const Particles& p) const;
   bool any_rotating_species() const;
 
@@ -87,6 +98,8 @@ class RigidBodyNve : public Integrator {
   ThermostatHook thermostat_;
   BodyForces forces_;
   bool have_forces_ = false;
+  double lambda_ = 0.5;
+  std::vector<Vec3> half_step_v_, half_step_l_;  // kept while the forces see the predicted ones
 };
 
 }  // namespace anisodyn

@@ -31,7 +31,8 @@
 // adds in the same order.
 //
 // The velocities are those in the state when the forces are evaluated: in velocity Verlet the
-// half-step ones, which is LAMMPS's scheme and Groot–Warren's with λ = ½ (docs/dpd.md).
+// half-step ones, which is LAMMPS's scheme and Groot–Warren's with λ = ½, or with another λ the
+// predicted ones (integrate/rigid_body_nve.hpp, docs/dpd.md).
 #include <array>
 #include <cstdint>
 #include <memory>
