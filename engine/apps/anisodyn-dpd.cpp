@@ -43,8 +43,8 @@ tool::Description description() {
   d.cost = {{"kind", "model"},
             {"work", "particle-steps"},
             {"amount", {"particles", {{"rule", "time_steps"}}}},
-            {"rate", 4.05e6},
-            {"measured", "bench/peers/dpd_side_by_side.sh, 2026-11-25 06:54: 24000 particles at rho = 3, gamma = 4.5, one core, median of 3 (docs/performance.md)"},
+            {"rate", 4.99e6},
+            {"measured", "bench/peers/dpd_side_by_side.sh, 2026-11-25 08:55: 24000 particles at rho = 3, gamma = 4.5, one core, median of 3 (docs/performance.md)"},
             {"note", "pure liquid"}};
   return d;
 }
