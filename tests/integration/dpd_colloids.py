@@ -10,7 +10,8 @@
    core only): the total energy per particle drifts by less than 1e-3 kT over 2000 steps, so that
    site forces, torques and the core's energy agree;
 4. equipartition in the liquid (gamma = 100, gamma_surface = 20/3, vector3d shell noise): the
-   colloids' translational and rotational kinetic temperatures equal 1 within 3.5 standard errors
+   colloids' translational and rotational kinetic temperatures (a rod's 2 rotational degrees of
+   freedom; a sphere's 3 with the surface-velocity friction) equal 1 within 3.5 standard errors
    (20 blocks of rows, each error below 0.03); the liquid's (1.005 at gamma = 100 from the time
    step) and the along_v noise's sphere temperature are reported;
 5. the rod run on two threads has the same bits as on one; SIGINT and SIGKILL then resume bit for
@@ -141,16 +142,18 @@ sphere_start = config("sphere_start", SPHERE, EDGE, seed=2)
 equi = {"seed": 7, "time_step": 0.005, "time": 200, "observe_every": 200, "liquid": {"a": 25, "gamma": 100},
         "colloids": {"species": ["colloid"], "gamma_surface": 6.666666666666667}, "frame_species": ["colloid"]}
 results = {}
-for label, start, noise in (("rod (1,4)", rod_start, "vector3d"), ("sphere d=2", sphere_start, "vector3d"), ("sphere d=2", sphere_start, "along_v")):
-    cfg = {**equi, "colloids": {**equi["colloids"], "shell_noise": noise}}
-    out = f"equi_{label[:3]}_{noise}.h5"
+cases = (("rod (1,4)", rod_start, "vector3d", "centre"), ("sphere d=2", sphere_start, "vector3d", "centre"),
+         ("sphere d=2", sphere_start, "along_v", "centre"), ("rotating sphere d=2", sphere_start, "vector3d", "surface"))
+for label, start, noise, at in cases:
+    cfg = {**equi, "colloids": {**equi["colloids"], "shell_noise": noise, "friction_velocity": at}}
+    out = f"equi_{label[:3]}_{noise}_{at}.h5"
     t0 = time.time()
     r = run([tool("anisodyn-dpd"), "-q", "--config", write("equi.json", cfg), "--input", start, "--output", out])
     assert r.returncode == 0, r.stderr
     with h5py.File(out) as f:
         skip = 10  # the first 10 tau: the colloid starts at rest
         rows = {k: block_mean(observable(f, k)[0][skip:]) for k in ("kinetic_temperature", "colloid_temperature_translational")}
-        if "rod" in label:
+        if "rod" in label or "rotating" in label:
             rows["colloid_temperature_rotational"] = block_mean(observable(f, "colloid_temperature_rotational")[0][skip:])
         momentum = np.abs(observable(f, "momentum")[0]).max()
     print(f"{label}, {noise} ({time.time() - t0:.1f} s): " + ", ".join(f"{k} {m:.4f} ± {s:.4f}" for k, (m, s) in rows.items())
@@ -212,6 +215,10 @@ bad_dpd = [
     ("a colloid species that is liquid too", {**good, "liquid": {"species": ["liquid", "colloid"]}}, sphere_start, "colloids.species[0]"),
     ("a species neither liquid nor colloid", {k: v for k, v in good.items() if k != "colloids"}, rod_start, "liquid.species"),
     ("unknown frame species", {**good, "frame_species": ["rod"]}, rod_start, "frame_species[0]"),
+    ("surface friction without friction", {**good, "colloids": {"species": ["colloid"], "friction_velocity": "surface"}}, sphere_start,
+     "colloids.friction_velocity"),
+    ("surface friction on a fixed colloid", {**good, "colloids": {**good["colloids"], "friction_velocity": "surface", "fixed": True}},
+     sphere_start, "colloids.friction_velocity"),
 ]
 for what, cfg, start, path in bad_dpd:
     expect_bad_input(what, [tool("anisodyn-dpd"), "--config", write("bad.json", cfg), "--input", start, "--output", "bad.h5"],

@@ -82,8 +82,8 @@ TEST(SiteLiquid, FrictionAndCoreForcesAndNewtonsThirdLaw) {
                                        {Vec3(4.0, 4.0, 4.5), Vec3(0.3, -0.2, 0.4), 2.0, 1},
                                        {Vec3(0.2, 7.9, 4.0), Vec3(0.0, 0.0, 0.0), 3.0, 2}};  // across the boundary
   std::vector<double> f(3 * liquid.x.size(), 0.0);
-  std::vector<Vec3> fs(sites.size(), Vec3::Zero());
-  forces.add(box, sites, liquid.view(), f.data(), fs);
+  std::vector<Vec3> fs(sites.size(), Vec3::Zero()), ts(sites.size(), Vec3::Zero());
+  forces.add(box, sites, liquid.view(), f.data(), fs, ts);
   Vec3 total = Vec3::Zero();
   int in_shell = 0;
   for (std::size_t i = 0; i < liquid.x.size(); ++i) {
@@ -108,6 +108,55 @@ TEST(SiteLiquid, FrictionAndCoreForcesAndNewtonsThirdLaw) {
   EXPECT_LT(total.norm(), 1e-9);  // Newton's third law: the sites take the opposite
 }
 
+TEST(SiteLiquid, SurfaceVelocityFrictionAndItsTorque) {
+  // kT = 0. With surface_velocity the friction sees v_i − v_s − ω × (d/2) r̂ and the site takes the
+  // torque (d/2) r̂ × (−F) about its centre; the published (centre) model ignores ω and gives no
+  // torque. Checked against the closed form for liquid particles in the shell of a spinning site.
+  const Box box(Vec3::Constant(10.0));
+  const SiteView site{Vec3(5.0, 5.0, 5.0), Vec3(0.1, 0.0, -0.2), 3.0, 4, Vec3(0.4, -1.1, 0.7)};
+  // Particles where the core reaches are left out: its huge central forces would swamp the
+  // torque's round-off.
+  const Liquid all = random_liquid(3000, 10.0, 12);
+  Liquid liquid;
+  for (std::size_t i = 0; i < all.x.size(); ++i) {
+    if ((Vec3(all.x[i], all.y[i], all.z[i]) - site.position).norm() < ShiftedMieCore().cutoff(3.0)) continue;
+    liquid.x.push_back(all.x[i]), liquid.y.push_back(all.y[i]), liquid.z.push_back(all.z[i]);
+    liquid.vx.push_back(all.vx[i]), liquid.vy.push_back(all.vy[i]), liquid.vz.push_back(all.vz[i]), liquid.id.push_back(all.id[i]);
+  }
+  for (bool surface : {false, true}) {
+    SiteLiquidParameters p;
+    p.gamma_surface = 5.0;
+    p.kT = 0.0;
+    p.surface_velocity = surface;
+    SiteLiquidForces forces(p, 0.005, 7);
+    std::vector<double> f(3 * liquid.x.size(), 0.0);
+    std::vector<Vec3> fs(1, Vec3::Zero()), ts(1, Vec3::Zero());
+    forces.add(box, std::vector<SiteView>{site}, liquid.view(), f.data(), fs, ts);
+    Vec3 torque = Vec3::Zero();
+    int in_shell = 0;
+    for (std::size_t i = 0; i < liquid.x.size(); ++i) {
+      const Vec3 rij = box.min_image(Vec3(liquid.x[i], liquid.y[i], liquid.z[i]) - site.position);
+      const double r = rij.norm(), outer = 1.5 + 0.5;
+      if (r >= outer) continue;
+      const Vec3 arm = 1.5 * rij / r;
+      const Vec3 got(f[3 * i], f[3 * i + 1], f[3 * i + 2]);
+      torque += arm.cross(-got);
+      ++in_shell;
+      const Vec3 v_surface = site.velocity + (surface ? Vec3(site.angular_velocity.cross(arm)) : Vec3::Zero());
+      const Vec3 expect = -p.gamma_surface * (outer - r) / 0.5 * (Vec3(liquid.vx[i], liquid.vy[i], liquid.vz[i]) - v_surface);
+      ASSERT_LT((got - expect).norm(), 1e-12 * (1.0 + expect.norm())) << i;
+    }
+    ASSERT_GT(in_shell, 40);  // about 56 in the shell beyond the core
+    if (surface) {
+      EXPECT_LT((ts[0] - torque).norm(), 1e-9 * torque.norm());
+      // The friction drags the spinning site back: the torque opposes ω.
+      EXPECT_LT(ts[0].dot(site.angular_velocity), 0.0);
+    } else {
+      EXPECT_EQ(ts[0], Vec3::Zero());
+    }
+  }
+}
+
 TEST(SiteLiquid, ShellNoiseHasTheFluctuationDissipationVariance) {
   // One liquid particle held in the shell of a site over many noise steps: each component of the
   // noise has variance 2 kT ξ/Δt (vector3d); along_v keeps it along v_is with the same variance.
@@ -127,8 +176,8 @@ TEST(SiteLiquid, ShellNoiseHasTheFluctuationDissipationVariance) {
     for (int step = 0; step < n; ++step) {
       forces.set_noise_step(static_cast<std::uint64_t>(step));
       std::vector<double> f(3, 0.0);
-      std::vector<Vec3> fs(1, Vec3::Zero());
-      forces.add(box, site, l.view(), f.data(), fs);
+      std::vector<Vec3> fs(1, Vec3::Zero()), ts(1, Vec3::Zero());
+      forces.add(box, site, l.view(), f.data(), fs, ts);
       const Vec3 noise(f[0], f[1] - friction_y, f[2]);
       sum += noise;
       sum2 += noise.cwiseProduct(noise);
@@ -163,7 +212,8 @@ TEST(SiteLiquid, TheThreadCountDoesNotChangeABit) {
     forces.set_noise_step(17);
     f.emplace_back(3 * liquid.x.size(), 0.0);
     fs.emplace_back(sites.size(), Vec3::Zero());
-    forces.add(box, sites, liquid.view(), f.back().data(), fs.back());
+    std::vector<Vec3> ts(sites.size(), Vec3::Zero());
+    forces.add(box, sites, liquid.view(), f.back().data(), fs.back(), ts);
   }
 #ifdef _OPENMP
   omp_set_num_threads(omp_get_num_procs());
@@ -186,8 +236,8 @@ TEST(SiteLiquid, ALiquidParticleBouncingOffAFixedSiteKeepsItsEnergy) {
   l.x = {12.0}, l.y = {10.0}, l.z = {10.0}, l.vx = {-3.0}, l.vy = {0.0}, l.vz = {0.0}, l.id = {1};
   auto force = [&] {
     std::vector<double> f(3, 0.0);
-    std::vector<Vec3> fs(1, Vec3::Zero());
-    forces.add(box, site, l.view(), f.data(), fs);
+    std::vector<Vec3> fs(1, Vec3::Zero()), ts(1, Vec3::Zero());
+    forces.add(box, site, l.view(), f.data(), fs, ts);
     return f[0];
   };
   auto energy = [&] { return 0.5 * l.vx[0] * l.vx[0] + forces.core().energy(std::abs(l.x[0] - 10.0), 2.0); };

@@ -16,12 +16,16 @@ double ColloidBody::half_span() const {
 
 namespace {
 
-ColloidBody sphere_body(double d, double density) {
+ColloidBody sphere_body(double d, double density, bool rotating) {
   ColloidBody b;
   b.sites.offsets = {Vec3::Zero()};
   b.sites.radii = {d};
   b.volume = std::numbers::pi * d * d * d / 6.0;
   b.mass = density * b.volume;
+  if (rotating) {
+    b.moments = Vec3::Constant(b.mass * d * d / 10.0);  // solid sphere: (2/5) m (d/2)²
+    b.rotational_degrees = 3;
+  }
   return b;
 }
 
@@ -50,11 +54,11 @@ ColloidBody rod_body(double cylinder, double d, double density, double spacing) 
 
 }  // namespace
 
-ColloidBody colloid_body(const Shape& shape, double mass_density, double site_spacing) {
+ColloidBody colloid_body(const Shape& shape, double mass_density, double site_spacing, bool rotating) {
   if (!(mass_density > 0.0)) throw InputError("the colloids' mass density must be positive");
   if (!(site_spacing > 0.0)) throw InputError("the rods' site spacing must be positive");
   switch (shape.kind) {
-    case ShapeKind::Sphere: return sphere_body(shape.diameter, mass_density);
+    case ShapeKind::Sphere: return sphere_body(shape.diameter, mass_density, rotating);
     case ShapeKind::Spherocylinder: return rod_body(shape.length, shape.diameter, mass_density, site_spacing);
     default:
       throw InputError(std::string("a DPD colloid is a sphere or a spherocylinder (a rod of spheres), not a ") +

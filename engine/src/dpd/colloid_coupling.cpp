@@ -45,7 +45,7 @@ void ColloidCoupling::classify(const State& state, const std::vector<char>& is_l
                                                             "' is neither liquid nor colloid: expected it in liquid.species or colloids.species");
     if (!is_colloid[s]) continue;
     try {
-      bodies_[s] = colloid_body(state.species[s].shape, col.mass_density, col.site_spacing);
+      bodies_[s] = colloid_body(state.species[s].shape, col.mass_density, col.site_spacing, col.shell.surface_velocity);
     } catch (const InputError& e) {
       throw InputError(config_file, "colloids.species", "species '" + state.species[s].name + "': " + e.what());
     }
@@ -143,7 +143,7 @@ void ColloidCoupling::place_sites(const State& s) {
     for (std::size_t k = 0; k < b.sites.size(); ++k) {
       const Vec3 arm = rot * b.sites.offsets[k];
       sites_.push_back({p.position(i) + arm, v + omega.cross(arm), b.sites.radii[k],
-                        (static_cast<std::uint64_t>(p.id[i]) << kSiteBits) | k});
+                        (static_cast<std::uint64_t>(p.id[i]) << kSiteBits) | k, omega});
     }
   }
 }
@@ -153,8 +153,9 @@ void ColloidCoupling::operator()(const State& s, BodyForces& out) {
   gather_liquid(p);
   place_sites(s);
   f_sites_.assign(sites_.size(), Vec3::Zero());
+  t_sites_.assign(sites_.size(), Vec3::Zero());
   const LiquidView view{lx_.data(), ly_.data(), lz_.data(), lvx_.data(), lvy_.data(), lvz_.data(), lid_.data(), liquid_.size()};
-  forces_.add(s.box, sites_, view, f_liquid_.data(), f_sites_);
+  forces_.add(s.box, sites_, view, f_liquid_.data(), f_sites_, t_sites_);
   for (std::size_t u = 0; u < liquid_.size(); ++u)
     out.force[static_cast<std::size_t>(liquid_[u])] += Vec3(f_liquid_[3 * u], f_liquid_[3 * u + 1], f_liquid_[3 * u + 2]);
   std::size_t first = 0;
@@ -164,6 +165,7 @@ void ColloidCoupling::operator()(const State& s, BodyForces& out) {
     const Wrench w = reduce_site_forces(b.sites, p.orientation(i), std::span<const Vec3>(f_sites_).subspan(first, b.sites.size()));
     out.force[i] += w.force;
     out.torque[i] += w.torque;
+    for (std::size_t k = 0; k < b.sites.size(); ++k) out.torque[i] += t_sites_[first + k];  // about the sites' centres (surface friction)
     first += b.sites.size();
   }
   const SiteLiquidSums& sums = forces_.last_sums();

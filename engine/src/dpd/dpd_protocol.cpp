@@ -36,6 +36,10 @@ DpdProtocol parse_dpd_protocol(tool::ConfigNode& cfg) {
     col.mass_density = c->positive("mass_density", col.mass_density);
     col.site_spacing = c->positive("site_spacing", col.site_spacing);
     col.fixed = c->boolean("fixed", false);
+    col.shell.surface_velocity = c->choice("friction_velocity", {"centre", "surface"}, "centre") == "surface";
+    c->reject_unless(col.shell.gamma_surface > 0.0, "friction_velocity", "with gamma_surface 0 (there is no friction shell)");
+    if (col.shell.surface_velocity && col.fixed)
+      c->fail("friction_velocity", "expected \"centre\" for fixed colloids (a body held in place has no surface motion)");
     p.colloids = col;
   }
   if (auto w = cfg.optional_object("walls")) {

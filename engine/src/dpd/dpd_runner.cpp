@@ -427,7 +427,7 @@ void DpdRunner::observe(io::H5mdWriter& out, std::int64_t step, double t) {
   if (colloids_) {
     attr("colloid_temperature_translational", "kT", "sum of M V^2 / (3 N_c) over the N_c colloids (centre-of-mass velocities), mean over the row's steps");
     if (colloids_->rotational_degrees(state_) > 0)
-      attr("colloid_temperature_rotational", "kT", "sum of L . omega over the colloids / their rotational degrees of freedom (2 per rod), mean over the row's steps");
+      attr("colloid_temperature_rotational", "kT", "sum of L . omega over the colloids / their rotational degrees of freedom (2 per rod, 3 per rotating sphere), mean over the row's steps");
   }
   attr("pressure", "kT/r_c^3", "trace/3 of the pressure tensor (the sum of the four parts), mean over the row's steps");
   attr("pressure_tensor_kinetic", "kT/r_c^3", "sum of m v v / V" + tensor);

@@ -23,18 +23,18 @@ double SiteLiquidForces::friction(double r, double d) const {
 }
 
 void SiteLiquidForces::add(const Box& box, std::span<const SiteView> sites, const LiquidView& liquid, double* f_liquid,
-                           std::span<Vec3> f_sites) {
+                           std::span<Vec3> f_sites, std::span<Vec3> t_sites) {
   const std::size_t n = liquid.n, ns = sites.size();
   const std::size_t chunks = (n + kChunk - 1) / kChunk;
-  // Per chunk: the force on each site, then the sums.
+  // Per chunk: the force and the torque on each site, then the sums.
   std::vector<double>& partial = partial_;  // kept between steps: no allocation per step
-  partial.assign(chunks * (3 * ns + kPerChunk), 0.0);
+  partial.assign(chunks * (6 * ns + kPerChunk), 0.0);
   const double noise_scale = std::sqrt(2.0 * p_.kT / time_step_);
   const bool noisy = p_.kT > 0.0 && p_.gamma_surface > 0.0;
 #pragma omp parallel for schedule(dynamic, 1)
   for (std::size_t c = 0; c < chunks; ++c) {
-    double* mine = partial.data() + c * (3 * ns + kPerChunk);
-    double* sums = mine + 3 * ns;
+    double* mine = partial.data() + c * (6 * ns + kPerChunk);
+    double* sums = mine + 6 * ns;
     const std::size_t begin = c * kChunk, end = std::min(n, begin + kChunk);
     for (std::size_t s = 0; s < ns; ++s) {
       const SiteView& site = sites[s];
@@ -46,7 +46,9 @@ void SiteLiquidForces::add(const Box& box, std::span<const SiteView> sites, cons
         if (r2 >= reach * reach) continue;
         const double r = std::sqrt(r2);
         const Vec3 e = rij / r;
-        const Vec3 v = Vec3(liquid.vx[i], liquid.vy[i], liquid.vz[i]) - site.velocity;
+        const Vec3 arm = 0.5 * d * e;  // to the surface point nearest the particle
+        const Vec3 surface_motion = p_.surface_velocity ? Vec3(site.angular_velocity.cross(arm)) : Vec3::Zero();
+        const Vec3 v = Vec3(liquid.vx[i], liquid.vy[i], liquid.vz[i]) - site.velocity - surface_motion;
         // Parts: core (along r̂), friction (along −v), noise.
         Vec3 parts[3] = {core_.force(r, d) * e, Vec3::Zero(), Vec3::Zero()};
         sums[0] += core_.energy(r, d);
@@ -65,9 +67,11 @@ void SiteLiquidForces::add(const Box& box, std::span<const SiteView> sites, cons
           }
         }
         const Vec3 total = parts[0] + parts[1] + parts[2];
+        const Vec3 torque = p_.surface_velocity ? Vec3(arm.cross(-(parts[1] + parts[2]))) : Vec3::Zero();
         for (int k = 0; k < 3; ++k) {
           f_liquid[3 * i + static_cast<std::size_t>(k)] += total[k];
-          mine[3 * s + static_cast<std::size_t>(k)] -= total[k];
+          mine[6 * s + static_cast<std::size_t>(k)] -= total[k];
+          mine[6 * s + 3 + static_cast<std::size_t>(k)] += torque[k];
         }
         for (int part = 0; part < 3; ++part) {
           const Mat3 w = rij * parts[part].transpose();
@@ -78,9 +82,12 @@ void SiteLiquidForces::add(const Box& box, std::span<const SiteView> sites, cons
   }
   sums_ = SiteLiquidSums{};
   for (std::size_t c = 0; c < chunks; ++c) {
-    const double* mine = partial.data() + c * (3 * ns + kPerChunk);
-    for (std::size_t s = 0; s < ns; ++s) f_sites[s] += Vec3(mine[3 * s], mine[3 * s + 1], mine[3 * s + 2]);
-    const double* sums = mine + 3 * ns;
+    const double* mine = partial.data() + c * (6 * ns + kPerChunk);
+    for (std::size_t s = 0; s < ns; ++s) {
+      f_sites[s] += Vec3(mine[6 * s], mine[6 * s + 1], mine[6 * s + 2]);
+      t_sites[s] += Vec3(mine[6 * s + 3], mine[6 * s + 4], mine[6 * s + 5]);
+    }
+    const double* sums = mine + 6 * ns;
     sums_.energy += sums[0];
     for (int part = 0; part < 3; ++part)
       for (int k = 0; k < 9; ++k) sums_.virial[static_cast<std::size_t>(part)](k) += sums[1 + 9 * part + k];

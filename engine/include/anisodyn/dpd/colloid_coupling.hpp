@@ -7,7 +7,8 @@
 // Per evaluation: the liquid is gathered into arrays (ascending state index); every colloid's sites
 // are placed at r + R(q) d_s and move with the rigid-body velocity V + ω × R(q) d_s, ω the lab-frame
 // angular velocity of the body's angular momentum; the site–liquid forces go to the liquid
-// particles and, reduced to a force and a torque (system/rigid_sites.hpp), to the colloids. A site's
+// particles and, reduced to a force and a torque (system/rigid_sites.hpp), to the colloids; with
+// `friction_velocity: "surface"` each site's torque about its centre is added too. A site's
 // noise key is (colloid id) · 2⁸ + site index, so that it differs from every other site's.
 //
 // The checks that make a colloid input bad (InputError with the key that is at fault):
@@ -73,7 +74,7 @@ class ColloidCoupling {
   std::vector<double> lx_, ly_, lz_, lvx_, lvy_, lvz_, f_liquid_;
   std::vector<std::int64_t> lid_;
   std::vector<SiteView> sites_;
-  std::vector<Vec3> f_sites_;
+  std::vector<Vec3> f_sites_, t_sites_;
 };
 
 }  // namespace anisodyn

@@ -11,7 +11,11 @@
 //             F^S = √(2 k_BT ξ(r)/Δt) θ_is v̂_is  (along_v, the printed form; none if |v_is| < 1e-12).
 //
 // The site receives the opposite of each force (Newton's third law), so the total momentum is
-// kept. v_s is the velocity of the site centre (for a rod's site, the rigid-body velocity there).
+// kept. v_s is the velocity of the site centre (for a rod's site, the rigid-body velocity there):
+// the published model. With surface_velocity (spec 30's open point, a variant for study) it is the
+// velocity of the surface point nearest the particle, v_s + ω × (d/2) r̂ with ω the body's angular
+// velocity, and the site also receives the torque (d/2) r̂ × (−F^F − F^S) about its centre (the
+// core is central: no torque).
 // The noise is keyed by (noise step, site id, liquid id) under its own purpose tag, independent of
 // the DPD pair noise. There are no DPD forces between sites and liquid (spec 30 §3.3).
 //
@@ -38,6 +42,7 @@ struct SiteLiquidParameters {
   double kT = 1.0;              // of the noise (0: no noise)
   double epsilon = 1.0;         // the core's ε (spec 30: k_BT = 1)
   enum class ShellNoise { Vector3d, AlongV } noise = ShellNoise::Vector3d;
+  bool surface_velocity = false;  // friction on the surface point's velocity (above), not the centre's
 };
 
 /// The site–liquid core: MieCore (n = 50, m = 49, ε, σ = 1) of r − Δ, Δ = d/2 − 1.
@@ -50,12 +55,14 @@ struct ShiftedMieCore {
   double force(double r, double d) const { return core.force(r - shift(d), 1.0); }
 };
 
-/// A site as the force loop sees it: centre, velocity of the centre, diameter, noise key.
+/// A site as the force loop sees it: centre, velocity of the centre, diameter, noise key, and the
+/// body's angular velocity (read only with surface_velocity).
 struct SiteView {
   Vec3 position = Vec3::Zero();
   Vec3 velocity = Vec3::Zero();
   double diameter = 1.0;
   std::uint64_t id = 0;
+  Vec3 angular_velocity = Vec3::Zero();
 };
 
 /// The liquid as the force loop sees it: n particles, structure of arrays.
@@ -81,8 +88,10 @@ class SiteLiquidForces {
   void set_noise_step(std::uint64_t step) { noise_step_ = step; }
   /// ξ(r) for a site of diameter d.
   double friction(double r, double d) const;
-  /// Adds the forces on the liquid (3 per particle, x y z) and on the sites (one per site).
-  void add(const Box& box, std::span<const SiteView> sites, const LiquidView& liquid, double* f_liquid, std::span<Vec3> f_sites);
+  /// Adds the forces on the liquid (3 per particle, x y z), the forces on the sites and the
+  /// torques on them about their centres (one each per site; torques only with surface_velocity).
+  void add(const Box& box, std::span<const SiteView> sites, const LiquidView& liquid, double* f_liquid, std::span<Vec3> f_sites,
+           std::span<Vec3> t_sites);
   const SiteLiquidSums& last_sums() const { return sums_; }
   const SiteLiquidParameters& parameters() const { return p_; }
   const ShiftedMieCore& core() const { return core_; }
@@ -94,7 +103,7 @@ class SiteLiquidForces {
   KeyedRandom noise_;
   std::uint64_t noise_step_ = 0;
   SiteLiquidSums sums_;
-  std::vector<double> partial_;  // per chunk of liquid: the force on each site, then the sums
+  std::vector<double> partial_;  // per chunk of liquid: the force and torque on each site, then the sums
 };
 
 }  // namespace anisodyn
