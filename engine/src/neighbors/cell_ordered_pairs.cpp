@@ -206,15 +206,31 @@ void CellOrderedPairs::find_pairs(const Box& box) {
 }
 
 void CellOrderedPairs::list_lower_pairs() {
-  const std::size_t n = order_.size();
+  // A counting sort of the pair slots by upper position. Each thread sorts the slots whose upper
+  // position lies in its own range, scanning all slots in ascending order: the same list as one
+  // thread's, each position's slots ascending.
+  const std::size_t n = order_.size(), pairs = partners_.size();
   lower_start_.assign(n + 1, 0);
-  for (const std::int32_t j : partners_) ++lower_start_[static_cast<std::size_t>(j) + 1];
-  for (std::size_t k = 0; k < n; ++k) lower_start_[k + 1] += lower_start_[k];
-  lower_.resize(partners_.size());
-  std::vector<std::size_t> next(lower_start_.begin(), lower_start_.end() - 1);
-  for (std::size_t k = 0; k < n; ++k)
-    for (std::size_t s = first_pair_[k]; s < first_pair_[k + 1]; ++s)
-      lower_[next[static_cast<std::size_t>(partners_[s])]++] = static_cast<std::int32_t>(s);
+  lower_.resize(pairs);
+  const std::int32_t* partner = partners_.data();
+#pragma omp parallel
+  {
+    std::size_t threads = 1, t = 0;
+#ifdef _OPENMP
+    threads = static_cast<std::size_t>(omp_get_num_threads());
+    t = static_cast<std::size_t>(omp_get_thread_num());
+#endif
+    const auto lo = static_cast<std::int32_t>(n * t / threads), hi = static_cast<std::int32_t>(n * (t + 1) / threads);
+    for (std::size_t s = 0; s < pairs; ++s)
+      if (partner[s] >= lo && partner[s] < hi) ++lower_start_[static_cast<std::size_t>(partner[s]) + 1];
+#pragma omp barrier
+#pragma omp single
+    for (std::size_t k = 0; k < n; ++k) lower_start_[k + 1] += lower_start_[k];
+    std::vector<std::size_t> next(lower_start_.begin() + lo, lower_start_.begin() + hi);
+    for (std::size_t k = 0; k < n; ++k)
+      for (std::size_t s = first_pair_[k]; s < first_pair_[k + 1]; ++s)
+        if (partner[s] >= lo && partner[s] < hi) lower_[next[static_cast<std::size_t>(partner[s] - lo)]++] = static_cast<std::int32_t>(s);
+  }
 }
 
 }  // namespace anisodyn
