@@ -39,7 +39,6 @@ nlohmann::json DpdRowSums::to_json() const {
           {"colloid_translational", colloid_translational},
           {"total_energy", total_energy},
           {"wall_force", {vec_json(wall_force[0]), vec_json(wall_force[1])}},
-          {"z_count", z_count}, {"z_vx", z_vx}, {"r_count", r_count}, {"r_mid_count", r_mid_count}, {"r_mid_vx", r_mid_vx},
           {"colloid_rotational", colloid_rotational},
           {"kinetic", mat_json(kinetic)},
           {"virial", {mat_json(virial[0]), mat_json(virial[1]), mat_json(virial[2])}}};
@@ -53,9 +52,6 @@ DpdRowSums DpdRowSums::from_json(const nlohmann::json& j) {
   r.colloid_translational = j.at("colloid_translational").get<double>();
   r.total_energy = j.at("total_energy").get<double>();
   for (std::size_t w = 0; w < 2; ++w) r.wall_force[w] = vec_from(j.at("wall_force")[w]);
-  for (auto [key, v] : {std::pair{"z_count", &r.z_count}, {"z_vx", &r.z_vx}, {"r_count", &r.r_count}, {"r_mid_count", &r.r_mid_count},
-                        {"r_mid_vx", &r.r_mid_vx}})
-    *v = j.at(key).get<std::vector<double>>();
   r.colloid_rotational = j.at("colloid_rotational").get<double>();
   r.kinetic = mat_from(j.at("kinetic"));
   for (int k = 0; k < 3; ++k) r.virial[static_cast<std::size_t>(k)] = mat_from(j.at("virial")[static_cast<std::size_t>(k)]);
@@ -166,6 +162,7 @@ DpdRunner::DpdRunner(State& state, const DpdProtocol& protocol, const std::strin
   check_core_time_step(config_file);
   if (protocol_.profiles && protocol_.profiles->radial_bin > 0.0 && !colloids_)
     throw InputError(config_file, "profiles.radial_bin", "expected colloids: the radial profiles are around the first colloid");
+  if (protocol_.profiles) profiles_ = std::make_unique<FlowProfiles>(*protocol_.profiles);
   integrator_ = std::make_unique<RigidBodyNve>(protocol_.time_step, inertia_, [this](const State& s, BodyForces& out) { forces(s, out); });
   integrator_->set_velocity_prediction(protocol_.velocity_lambda);
   select_frame_particles(config_file);
@@ -316,7 +313,7 @@ void DpdRunner::add_to_row() {
   }
   if (walls_)
     for (std::size_t w = 0; w < 2; ++w) row_.wall_force[w] += walls_->last_sums().force_on_wall[w];
-  if (protocol_.profiles) add_profiles();
+  if (profiles_) profiles_->add(state_, liquid_, colloids_ ? state_.particles.position(static_cast<std::size_t>(colloids_->colloids().front())) : Vec3::Zero());
   row_.steps += 1;
   row_.kinetic += kinetic;
   row_.kinetic_temperature += liquid_kinetic / (3.0 * (n_liquid - 1.0));
@@ -326,62 +323,6 @@ void DpdRunner::add_to_row() {
   if (!green_kubo_) return;
   const double volume = state_.box.volume();
   green_kubo_->add(production_.step() + 1, {kinetic / volume, virial[0] / volume, virial[1] / volume, virial[2] / volume}, *out_);
-}
-
-void DpdRunner::add_profiles() {
-  const DpdProtocol::Profiles& prof = *protocol_.profiles;
-  const Particles& p = state_.particles;
-  if (prof.z_bin > 0.0) {
-    const std::size_t bins = static_cast<std::size_t>(std::ceil(state_.box.edges().z() / prof.z_bin));
-    row_.z_count.resize(bins, 0.0);
-    row_.z_vx.resize(bins, 0.0);
-    for (const std::int32_t index : liquid_) {
-      const auto i = static_cast<std::size_t>(index);
-      const auto b = std::min(bins - 1, static_cast<std::size_t>(p.z[i] / prof.z_bin));
-      row_.z_count[b] += 1.0;
-      row_.z_vx[b] += p.vx[i];
-    }
-  }
-  if (prof.radial_bin > 0.0) {
-    const double r_max = radial_max();
-    const std::size_t bins = static_cast<std::size_t>(std::ceil(r_max / prof.radial_bin - 1e-9));
-    for (auto* v : {&row_.r_count, &row_.r_mid_count, &row_.r_mid_vx}) v->resize(bins, 0.0);
-    const Vec3 centre = p.position(static_cast<std::size_t>(colloids_->colloids().front()));
-    for (const std::int32_t index : liquid_) {
-      const auto i = static_cast<std::size_t>(index);
-      const Vec3 d = state_.box.min_image(p.position(i) - centre);
-      const double r = d.norm();
-      if (r >= r_max) continue;
-      const auto b = static_cast<std::size_t>(r / prof.radial_bin);
-      row_.r_count[b] += 1.0;
-      if (std::abs(d.x()) < prof.midplane_half_width) {
-        row_.r_mid_count[b] += 1.0;
-        row_.r_mid_vx[b] += p.vx[i];
-      }
-    }
-  }
-}
-
-double DpdRunner::radial_max() const {
-  const auto& prof = *protocol_.profiles;
-  return prof.radial_max > 0.0 ? prof.radial_max : 0.5 * state_.box.shortest_edge();
-}
-
-void DpdRunner::write_profiles(io::H5mdWriter& out, std::int64_t step, double t, double steps) {
-  auto mean = [&](const std::vector<double>& v) {
-    std::vector<double> m(v.size());
-    for (std::size_t k = 0; k < v.size(); ++k) m[k] = v[k] / steps;
-    return m;
-  };
-  if (!row_.z_count.empty()) {
-    out.append_observable("profile_z_count", step, t, mean(row_.z_count));
-    out.append_observable("profile_z_vx_sum", step, t, mean(row_.z_vx));
-  }
-  if (!row_.r_count.empty()) {
-    out.append_observable("profile_r_count", step, t, mean(row_.r_count));
-    out.append_observable("profile_r_midplane_count", step, t, mean(row_.r_mid_count));
-    out.append_observable("profile_r_midplane_vx_sum", step, t, mean(row_.r_mid_vx));
-  }
 }
 
 void DpdRunner::observe(io::H5mdWriter& out, std::int64_t step, double t) {
@@ -411,7 +352,7 @@ void DpdRunner::observe(io::H5mdWriter& out, std::int64_t step, double t) {
       out.append_observable(w == 0 ? "wall_force_bottom" : "wall_force_top", step, t, std::vector<double>{f.x(), f.y(), f.z()});
     }
   }
-  if (protocol_.profiles) write_profiles(out, step, t, steps);
+  if (profiles_) profiles_->write(out, step, t, steps);
   Vec3 momentum = Vec3::Zero();
   const Particles& p = state_.particles;
   for (std::size_t i = 0; i < p.size(); ++i) momentum += inertia_[static_cast<std::size_t>(p.species[i])].mass * p.velocity(i);
@@ -439,29 +380,7 @@ void DpdRunner::observe(io::H5mdWriter& out, std::int64_t step, double t) {
     attr("wall_force_bottom", "kT/r_c", "force of the liquid on the wall at z = 0 (x, y, z), mean over the row's steps");
     attr("wall_force_top", "kT/r_c", "force of the liquid on the wall at z = height (x, y, z), mean over the row's steps");
   }
-  if (protocol_.profiles) {
-    const auto& prof = *protocol_.profiles;
-    const Vec3 L = state_.box.edges();
-    if (prof.z_bin > 0.0) {
-      const std::string slabs = "per slab [k w, (k + 1) w) of z, w = z_bin = " + std::to_string(prof.z_bin) + ", area " +
-                                std::to_string(L.x() * L.y()) + ", mean over the row's steps";
-      attr("profile_z_count", "1", "number of liquid particles " + slabs);
-      attr("profile_z_vx_sum", "r_c/tau", "sum of v_x of the liquid particles " + slabs);
-      for (const char* name : {"profile_z_count", "profile_z_vx_sum"}) out.set_observable_attribute(name, "bin_width", std::to_string(prof.z_bin));
-    }
-    if (prof.radial_bin > 0.0) {
-      const std::string shells = "per shell [k w, (k + 1) w) of the distance r from the first colloid's centre, w = radial_bin = " +
-                                 std::to_string(prof.radial_bin) + ", mean over the row's steps";
-      const std::string mid = " with |x - x_c| < " + std::to_string(prof.midplane_half_width) + " (the mid-plane slab)";
-      attr("profile_r_count", "1", "number of liquid particles " + shells);
-      attr("profile_r_midplane_count", "1", "number of liquid particles" + mid + ", " + shells);
-      attr("profile_r_midplane_vx_sum", "r_c/tau", "sum of v_x of the liquid particles" + mid + ", " + shells);
-      for (const char* name : {"profile_r_count", "profile_r_midplane_count", "profile_r_midplane_vx_sum"}) {
-        out.set_observable_attribute(name, "bin_width", std::to_string(prof.radial_bin));
-        out.set_observable_attribute(name, "midplane_half_width", std::to_string(prof.midplane_half_width));
-      }
-    }
-  }
+  if (profiles_) profiles_->describe(out, state_.box);
   attr("total_energy", "kT", "(kinetic + rotational + potential energy) per particle, full-step velocities, mean over the row's steps; "
                              "conserved only without thermostat (gamma = 0, gamma_surface = 0)");
   attr("momentum", "m r_c/tau", "total momentum sum m v at the row's last step (x, y, z)");
@@ -503,6 +422,7 @@ nlohmann::json DpdRunner::checkpoint_state() const {
   };
   return {{"production", production_.checkpoint_state()},
           {"row", row_.to_json()},
+          {"profiles", profiles_ ? profiles_->to_json() : nlohmann::json()},
           {"forces", {{"force", flat(f.force)}, {"torque", flat(f.torque)}, {"energy", f.energy}, {"virial", mat_json(f.virial)}}},
           // The pair list's order decides the order of the force sums: rebuilt from these, it is the same.
           {"list_positions", pairs_->list_positions()},
@@ -514,6 +434,7 @@ void DpdRunner::restore(const nlohmann::json& j) {
   restored_ = true;
   production_.restore(j.at("production"));
   row_ = DpdRowSums::from_json(j.at("row"));
+  if (profiles_) profiles_->restore(j.at("profiles"));
   const auto& f = j.at("forces");
   const auto force = f.at("force").get<std::vector<double>>();
   BodyForces forces;

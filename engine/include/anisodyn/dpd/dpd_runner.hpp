@@ -22,6 +22,7 @@
 
 #include "anisodyn/dpd/colloid_coupling.hpp"
 #include "anisodyn/dpd/dpd_protocol.hpp"
+#include "anisodyn/dpd/flow_profiles.hpp"
 #include "anisodyn/integrate/rigid_body_nve.hpp"
 #include "anisodyn/interactions/dpd_pairs.hpp"
 #include "anisodyn/io/h5md.hpp"
@@ -37,9 +38,6 @@ struct DpdRowSums {
   double colloid_translational = 0.0, colloid_rotational = 0.0;  // Σ M V², Σ L·ω
   double total_energy = 0.0;  // per particle
   std::array<Vec3, 2> wall_force{Vec3::Zero(), Vec3::Zero()};  // Σ over steps of the liquid's force on each wall
-  // Profiles (DpdProtocol::Profiles), Σ over steps: per z slab the number and Σ v_x; per shell around
-  // the colloid the number, and the number and Σ v_x in its mid-plane slab.
-  std::vector<double> z_count, z_vx, r_count, r_mid_count, r_mid_vx;
   Mat3 kinetic = Mat3::Zero();                // Σ m v vᵀ
   std::array<Mat3, 3> virial{Mat3::Zero(), Mat3::Zero(), Mat3::Zero()};  // Σ r_ij F_ijᵀ by part
 
@@ -74,11 +72,6 @@ class DpdRunner : public run::FieldlessClient {
   void check_walls(const std::string& config_file) const;
   /// The Mie cores' (colloids', walls') limit on the time step.
   void check_core_time_step(const std::string& config_file) const;
-  /// Adds this step's profiles to the row.
-  void add_profiles();
-  void write_profiles(io::H5mdWriter& out, std::int64_t step, double time, double steps);
-  /// The radial profiles' reach: radial_max, or half the shortest box edge.
-  double radial_max() const;
   /// The DPD forces, the colloids' with the liquid, the walls' and the drive.
   void forces(const State& s, BodyForces& out);
   void set_noise_step(std::uint64_t step);
@@ -93,6 +86,7 @@ class DpdRunner : public run::FieldlessClient {
   std::unique_ptr<DpdForceField> pairs_;
   std::unique_ptr<ColloidCoupling> colloids_;  // null: a pure liquid
   std::unique_ptr<FlatWalls> walls_;           // null: periodic in z
+  std::unique_ptr<FlowProfiles> profiles_;     // null: none
   std::vector<std::int32_t> liquid_;           // the liquid particles' indices
   std::vector<BodyInertia> inertia_;           // per species
   std::vector<std::size_t> frame_particles_;   // empty: every particle
