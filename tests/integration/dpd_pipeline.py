@@ -147,6 +147,8 @@ bad = [
     ("velocities from an input without them", {**dpd, "velocities": "input"}, "velocities"),
     ("a schedule (no field in DPD)", {**dpd, "schedule": {"segments": []}}, "schedule"),
     ("Groot-Warren lambda beyond 1", {**dpd, "velocity_lambda": 1.5}, "velocity_lambda"),
+    ("Groot-Warren lambda without velocity-dependent forces", {**dpd, "liquid": {"a": 25, "gamma": 0}, "velocity_lambda": 0.65},
+     "velocity_lambda"),
 ]
 for what, config, path in bad:
     r = run([tool("anisodyn-dpd"), "--config", write("bad.json", config), "--input", "start.h5", "--output", "bad.h5"])

@@ -246,4 +246,5 @@ for what, series, path, words in ERRORS:
     except ReportError as e:
         check(str(e).startswith(path) and words in str(e), f"{what}: {e}")
 
-finish()
+failed = finish()
+assert not failed, f"{len(failed)} check(s) failed: {failed}"

@@ -1,7 +1,5 @@
 """The ok/FAIL lines of an integration script: check(cond, what) prints one line per check and keeps
-the failures; finish() prints their count and fails (an assertion, exit 1) if there were any."""
-import sys
-
+the failures; finish() prints their count and returns them, for the script's own assertion."""
 failures = []
 
 
@@ -13,5 +11,4 @@ def check(cond, what):
 
 def finish():
     print(f"{len(failures)} failed")
-    assert not failures, f"{len(failures)} check(s) failed: {failures}"
-    sys.exit(0)
+    return list(failures)

@@ -118,6 +118,12 @@ TEST(RigidSites, APairOfOppositeSiteForcesIsAPureTorque) {
   // (0, 0, −1) × (−2, 0, 0) + (0, 0, 1) × (2, 0, 0) = (0, 2, 0) + (0, 2, 0).
   EXPECT_NEAR((w.torque - Vec3(0, 4, 0)).norm(), 0, 1e-15);
   EXPECT_THROW(reduce_site_forces(body, q, std::vector<Vec3>(3)), InputError);
+  // Torques on the sites about their own centres add to the body's; one per site or none.
+  const std::vector<Vec3> t = {Vec3(0.5, 0, 0), Vec3(0, 0, -1)};
+  const Wrench wt = reduce_site_forces(body, q, f, t);
+  EXPECT_EQ(wt.force, Vec3::Zero());
+  EXPECT_NEAR((wt.torque - Vec3(0.5, 4, -1)).norm(), 0, 1e-15);
+  EXPECT_THROW(reduce_site_forces(body, q, f, std::vector<Vec3>(1)), InputError);
 }
 
 TEST(RigidSites, RodMomentsMatchTheDpdTable) {

@@ -162,10 +162,10 @@ void ColloidCoupling::operator()(const State& s, BodyForces& out) {
   for (const std::int32_t c : colloids_) {
     const auto i = static_cast<std::size_t>(c);
     const ColloidBody& b = bodies_[static_cast<std::size_t>(p.species[i])];
-    const Wrench w = reduce_site_forces(b.sites, p.orientation(i), std::span<const Vec3>(f_sites_).subspan(first, b.sites.size()));
+    const Wrench w = reduce_site_forces(b.sites, p.orientation(i), std::span<const Vec3>(f_sites_).subspan(first, b.sites.size()),
+                                        std::span<const Vec3>(t_sites_).subspan(first, b.sites.size()));
     out.force[i] += w.force;
     out.torque[i] += w.torque;
-    for (std::size_t k = 0; k < b.sites.size(); ++k) out.torque[i] += t_sites_[first + k];  // about the sites' centres (surface friction)
     first += b.sites.size();
   }
   const SiteLiquidSums& sums = forces_.last_sums();

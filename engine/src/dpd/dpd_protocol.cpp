@@ -15,8 +15,6 @@ DpdProtocol parse_dpd_protocol(tool::ConfigNode& cfg) {
   p.liquid.gamma = liquid.non_negative("gamma", p.liquid.gamma);
   p.liquid.cutoff = liquid.positive("cutoff", p.liquid.cutoff);
   p.skin = liquid.positive("skin", p.skin);
-  p.velocity_lambda = cfg.non_negative("velocity_lambda", p.velocity_lambda);
-  if (p.velocity_lambda > 1.0) cfg.fail("velocity_lambda", "expected Groot–Warren's λ in [0, 1] (½: LAMMPS's scheme; they used 0.65)");
   if (cfg.has("velocities"))
     p.velocities = cfg.choice("velocities", {"input", "maxwell_boltzmann"}) == "input" ? DpdProtocol::Velocities::Input
                                                                                       : DpdProtocol::Velocities::MaxwellBoltzmann;
@@ -78,6 +76,13 @@ DpdProtocol parse_dpd_protocol(tool::ConfigNode& cfg) {
     prof.midplane_half_width = pr->positive("midplane_half_width", prof.midplane_half_width);
     p.profiles = prof;
   }
+  // λ only changes the forces that depend on velocities: the liquid's dissipative force and the
+  // colloids' and walls' friction shells.
+  const bool velocity_dependent = p.liquid.gamma > 0.0 || (p.colloids && p.colloids->shell.gamma_surface > 0.0) ||
+                                  (p.walls && (p.walls->gamma_surface[0] > 0.0 || p.walls->gamma_surface[1] > 0.0));
+  cfg.reject_unless(velocity_dependent, "velocity_lambda", "without velocity-dependent forces (liquid.gamma 0 and no friction shell)");
+  p.velocity_lambda = cfg.non_negative("velocity_lambda", p.velocity_lambda);
+  if (p.velocity_lambda > 1.0) cfg.fail("velocity_lambda", "expected Groot–Warren's λ in [0, 1] (½: LAMMPS's scheme; they used 0.65)");
   if (cfg.has("frame_species")) {
     p.frame_species = cfg.strings("frame_species");
     if (p.frame_species.empty()) cfg.fail("frame_species", "expected at least one species (leave the key out for every particle)");

@@ -13,9 +13,6 @@ namespace {
 
 using Vec4 = Eigen::Vector4d;  // a quaternion, or its conjugate momentum, as (w, x, y, z)
 
-/// Below this many bodies a step runs on one thread: a parallel region costs more than it saves.
-constexpr std::size_t kParallelBodies = 1024;
-
 /// P_k x = x ⊗ e_k, the Hamilton product with body axis k's unit quaternion (k = 0, 1, 2 for the
 /// paper's P_1, P_2, P_3). These are the columns 1–3 of S(x); column 0 is x itself.
 Vec4 permute(int k, const Vec4& x) {

@@ -23,13 +23,15 @@ void site_positions(const SiteBody& body, const Vec3& centre, const Quat& q, std
   for (std::size_t s = 0; s < body.size(); ++s) out[s] = centre + rot * body.offsets[s];
 }
 
-Wrench reduce_site_forces(const SiteBody& body, const Quat& q, std::span<const Vec3> site_forces) {
+Wrench reduce_site_forces(const SiteBody& body, const Quat& q, std::span<const Vec3> site_forces, std::span<const Vec3> site_torques) {
   require_one_per_site(body, site_forces.size(), "reduce_site_forces");
+  if (!site_torques.empty()) require_one_per_site(body, site_torques.size(), "reduce_site_forces (site torques)");
   const Mat3 rot = q.toRotationMatrix();
   Wrench w;
   for (std::size_t s = 0; s < body.size(); ++s) {
     w.force += site_forces[s];
     w.torque += (rot * body.offsets[s]).cross(site_forces[s]);
+    if (!site_torques.empty()) w.torque += site_torques[s];
   }
   return w;
 }

@@ -9,6 +9,10 @@
 
 namespace anisodyn {
 
+/// Below this many bodies a loop over them runs on one thread: a parallel region costs more than it
+/// saves (the integrators' loops and BodyForces::reset).
+inline constexpr std::size_t kParallelBodies = 1024;
+
 /// Per body, in particle order: the force and the torque about the body centre, both lab frame;
 /// bodies made of sites get them from reduce_site_forces (system/rigid_sites.hpp). The energy is the
 /// potential energy of the configuration and the virial W = Σ_{i<j} r_ij ⊗ F_ij (as in
@@ -24,7 +28,7 @@ struct BodyForces {
   void reset(std::size_t n) {
     force.resize(n);
     torque.resize(n);
-#pragma omp parallel for schedule(static) if (n >= 1024)
+#pragma omp parallel for schedule(static) if (n >= kParallelBodies)
     for (std::size_t i = 0; i < n; ++i) force[i].setZero(), torque[i].setZero();
     energy = 0;
     virial.setZero();

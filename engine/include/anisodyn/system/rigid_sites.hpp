@@ -38,9 +38,11 @@ struct Wrench {
 /// with Box::wrap where a cell grid needs it.
 void site_positions(const SiteBody& body, const Vec3& centre, const Quat& q, std::span<Vec3> out);
 
-/// F = Σ_s f_s and τ = Σ_s (R(q) d_s) × f_s, for the lab-frame forces f_s on the body's sites in
-/// site order (site_forces.size() == body.size()).
-Wrench reduce_site_forces(const SiteBody& body, const Quat& q, std::span<const Vec3> site_forces);
+/// F = Σ_s f_s and τ = Σ_s [(R(q) d_s) × f_s + t_s], for the lab-frame forces f_s on the body's
+/// sites in site order (site_forces.size() == body.size()) and the torques t_s on the sites about
+/// their own centres (site_torques: empty for none, else one per site; DPD's surface friction).
+Wrench reduce_site_forces(const SiteBody& body, const Quat& q, std::span<const Vec3> site_forces,
+                          std::span<const Vec3> site_torques = {});
 
 /// Principal moments of inertia of equal point masses at the offsets, about the body centre and
 /// the body axes: the diagonal of Σ_s m (|d_s|² 1 − d_s d_sᵀ). The body axes must be principal
