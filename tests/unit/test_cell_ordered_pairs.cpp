@@ -4,6 +4,10 @@
 // rebuilt from built_positions() identical to the original.
 #include <gtest/gtest.h>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include <algorithm>
 #include <random>
 #include <set>
@@ -69,21 +73,31 @@ std::set<std::pair<int, int>> listed(const CellOrderedPairs& list) {
 }  // namespace
 
 TEST(CellOrderedPairs, ThePairsOfABruteForceSearch) {
-  const double cutoff = 1.0, skin = 0.3;
-  const std::vector<Vec3> boxes = {Vec3(2.6, 2.6, 2.6), Vec3(3.0, 3.0, 3.0), Vec3(4.0, 5.3, 2.7), Vec3(8.0, 8.0, 8.0), Vec3(11.0, 6.5, 9.2)};
-  unsigned seed = 1;
-  for (const Vec3& edges : boxes) {
-    const auto n = static_cast<std::size_t>(3.0 * edges.prod());
-    const Cloud c = random_cloud(edges, n, seed++, 2.0);
-    CellOrderedPairs list(cutoff, skin);
-    ASSERT_TRUE(list.update(c.box, c.x.data(), c.y.data(), c.z.data(), n));
-    std::vector<std::int32_t> order(list.order().begin(), list.order().end());
-    std::sort(order.begin(), order.end());
-    for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(order[i], static_cast<std::int32_t>(i)) << "order is not a permutation";
-    const auto expected = brute_force(c, cutoff + skin);
-    EXPECT_EQ(listed(list), expected) << "box " << edges.transpose();
-    EXPECT_EQ(list.pairs(), expected.size());
+  // On 1, 2 and 3 threads: the rows and the lower pairs are built in blocks, one per thread.
+  for (int threads : {1, 2, 3}) {
+#ifdef _OPENMP
+    omp_set_num_threads(threads);
+#endif
+    SCOPED_TRACE(std::to_string(threads) + " threads");
+    const double cutoff = 1.0, skin = 0.3;
+    const std::vector<Vec3> boxes = {Vec3(2.6, 2.6, 2.6), Vec3(3.0, 3.0, 3.0), Vec3(4.0, 5.3, 2.7), Vec3(8.0, 8.0, 8.0), Vec3(11.0, 6.5, 9.2)};
+    unsigned seed = 1;
+    for (const Vec3& edges : boxes) {
+      const auto n = static_cast<std::size_t>(3.0 * edges.prod());
+      const Cloud c = random_cloud(edges, n, seed++, 2.0);
+      CellOrderedPairs list(cutoff, skin);
+      ASSERT_TRUE(list.update(c.box, c.x.data(), c.y.data(), c.z.data(), n));
+      std::vector<std::int32_t> order(list.order().begin(), list.order().end());
+      std::sort(order.begin(), order.end());
+      for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(order[i], static_cast<std::int32_t>(i)) << "order is not a permutation";
+      const auto expected = brute_force(c, cutoff + skin);
+      EXPECT_EQ(listed(list), expected) << "box " << edges.transpose();
+      EXPECT_EQ(list.pairs(), expected.size());
+    }
   }
+#ifdef _OPENMP
+  omp_set_num_threads(omp_get_num_procs());
+#endif
 }
 
 TEST(CellOrderedPairs, RebuildsOnceAParticleMovedHalfTheSkin) {

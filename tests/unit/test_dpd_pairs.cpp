@@ -200,6 +200,38 @@ TEST(DpdPairs, TheThreadCountDoesNotChangeABit) {
   }
 }
 
+TEST(DpdPairs, PairsAcrossBlocksFollowListRebuildsAndThreadCounts) {
+  // The pairs across blocks are found once per list build and block count: one field, evaluated
+  // with 2 threads, then after moves past the skin (a new list) with 2, then with 3 and 1, gives
+  // each time the bits of a fresh field on one thread.
+  const State s = liquid(1536, 8.0, 9);
+  State far = s;
+  for (std::size_t i = 0; i < far.particles.size(); ++i) far.particles.x[i] += 0.4 * std::sin(static_cast<double>(i));
+  auto fresh = [](const State& st) {
+    omp_set_num_threads(1);
+    auto f = field(5);
+    return evaluate(f, st);
+  };
+  const BodyForces want_s = fresh(s), want_far = fresh(far);
+  auto f = field(5);
+  const auto builds_before = [&] { return f.list().builds(); };
+  struct Case {
+    int threads;
+    const State* state;
+    const BodyForces* want;
+  };
+  for (const Case& c : {Case{2, &s, &want_s}, Case{2, &far, &want_far}, Case{3, &far, &want_far}, Case{2, &s, &want_s}, Case{1, &far, &want_far}}) {
+    omp_set_num_threads(c.threads);
+    const auto builds = builds_before();
+    const BodyForces got = evaluate(f, *c.state);
+    if (c.state == &far && c.threads == 2) EXPECT_GT(f.list().builds(), builds) << "the move must rebuild the list";
+    for (std::size_t i = 0; i < s.particles.size(); ++i)
+      ASSERT_TRUE(got.force[i] == c.want->force[i]) << "particle " << i << ", " << c.threads << " threads";
+    EXPECT_EQ(got.energy, c.want->energy);
+  }
+  omp_set_num_threads(omp_get_num_procs());
+}
+
 TEST(DpdPairs, OnlyTheListedLiquidParticlesTakeDpdForces) {
   // The liquid of a state with other particles among it (colloids-to-be, here at random places):
   // the liquid's forces, energy and virial are those of the liquid alone, bit for bit, and the

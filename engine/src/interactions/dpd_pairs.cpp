@@ -65,9 +65,10 @@ void DpdForceField::update_list(const State& s, std::size_t n) {
 namespace {
 
 /// Σ_q term(q) with eight partial sums combined in a fixed order: the association is the
-/// source's, so the sum has the same bits on any thread, and the loop vectorises.
+/// source's, so the sum has the same bits on any thread, and the loop vectorises
+/// (inlined into row_forces by force: left to itself, the compiler once called it per sum, 22% of a step).
 template <class Term>
-double fixed_sum(std::size_t n, Term term) {
+[[gnu::always_inline]] inline double fixed_sum(std::size_t n, Term term) {
   double acc[8] = {};
   std::size_t q = 0;
   for (; q + 8 <= n; q += 8)
@@ -200,29 +201,64 @@ void DpdForceField::row_forces(const RowTask* tasks, std::size_t count, std::siz
   }
 }
 
-void DpdForceField::rows(std::size_t begin, std::size_t end, std::size_t block_end, bool cross_only, const Box& box) {
+void DpdForceField::rows(std::size_t begin, std::size_t end, std::size_t block_end, const Box& box) {
   // Rows go to row_forces in groups (aligned to multiples of kRowsPerGroup: blocks start at such
   // multiples), so that the noise of a group is drawn in one batch.
   thread_local std::vector<RowTask> tasks;  // this thread's, kept between calls
   for (std::size_t group = begin; group < end; group += kRowsPerGroup) {
     const std::size_t group_end = std::min(end, group + kRowsPerGroup);
     tasks.clear();
+    std::fill_n(partial_.data() + kSums * (group / kRowsPerGroup), kSums, 0.0);
     std::size_t candidates = 0;
     for (std::size_t k = group; k < group_end; ++k) {
-      const auto row = list_.partners_above(k);
-      std::size_t m_begin = 0;
-      if (cross_only) {
-        // Pairs across the block (partner at or beyond block_end) are the row's tail: partners ascend.
-        m_begin = static_cast<std::size_t>(std::lower_bound(row.begin(), row.end(), static_cast<std::int32_t>(block_end)) - row.begin());
-        if (m_begin == row.size()) continue;
-        std::fill_n(slot_force_.get() + 3 * (list_.first_pair(k) + m_begin), 3 * (row.size() - m_begin), 0.0);  // beyond the cut-off: 0
-      } else if (k % kRowsPerGroup == 0) {
-        std::fill_n(partial_.data() + kSums * (k / kRowsPerGroup), kSums, 0.0);
-      }
-      tasks.push_back({k, m_begin, row.size(), candidates});
-      candidates += row.size() - m_begin;
+      const std::size_t size = list_.partners_above(k).size();
+      tasks.push_back({k, 0, size, candidates});
+      candidates += size;
     }
-    if (!tasks.empty()) row_forces(tasks.data(), tasks.size(), block_end, cross_only, box);
+    row_forces(tasks.data(), tasks.size(), block_end, false, box);
+  }
+}
+
+void DpdForceField::find_cross_tasks(std::size_t begin, std::size_t end, std::vector<RowTask>& cross) const {
+  cross.clear();
+  std::size_t candidates = 0;
+  for (std::size_t k = begin; k < end; ++k) {
+    // Pairs across the block (partner at or beyond end) are the row's tail: partners ascend.
+    const auto row = list_.partners_above(k);
+    const auto m_begin = static_cast<std::size_t>(std::lower_bound(row.begin(), row.end(), static_cast<std::int32_t>(end)) - row.begin());
+    if (m_begin == row.size()) continue;
+    cross.push_back({k, m_begin, row.size(), candidates});
+    candidates += row.size() - m_begin;
+  }
+}
+
+void DpdForceField::cross_share(int share, int shares, const Box& box) {
+  // The pairs across blocks of all blocks, in block order, as one sequence of candidates: this
+  // thread takes the tasks that start in its equal part of it. (Each block's own tasks would load
+  // the first block with the pairs across the periodic boundary as well as those across its end,
+  // and leave the last with none.) A pair's slot is the same whoever evaluates it.
+  std::size_t total = 0;
+  for (const auto& tasks : cross_tasks_) total += tasks.empty() ? 0 : tasks.back().first_candidate + (tasks.back().m_end - tasks.back().m_begin);
+  const std::size_t lo = total * static_cast<std::size_t>(share) / static_cast<std::size_t>(shares);
+  const std::size_t hi = total * static_cast<std::size_t>(share + 1) / static_cast<std::size_t>(shares);
+  thread_local std::vector<RowTask> batch;
+  std::size_t offset = 0;  // the block's first candidate in the sequence
+  for (const auto& tasks : cross_tasks_) {
+    const auto starts_before = [&](const RowTask& t, std::size_t c) { return offset + t.first_candidate < c; };
+    auto t = std::lower_bound(tasks.begin(), tasks.end(), lo, starts_before);
+    const auto t_end = std::lower_bound(t, tasks.end(), hi, starts_before);
+    while (t != t_end) {
+      batch.clear();
+      std::size_t candidates = 0;
+      for (; t != t_end && batch.size() < kRowsPerGroup; ++t) {
+        batch.push_back({t->k, t->m_begin, t->m_end, candidates});
+        candidates += t->m_end - t->m_begin;
+        // Pairs beyond the cut-off are not written: their slots hold 0.
+        std::fill_n(slot_force_.get() + 3 * (list_.first_pair(t->k) + t->m_begin), 3 * (t->m_end - t->m_begin), 0.0);
+      }
+      row_forces(batch.data(), batch.size(), 0, true, box);
+    }
+    if (!tasks.empty()) offset += tasks.back().first_candidate + (tasks.back().m_end - tasks.back().m_begin);
   }
 }
 
@@ -248,8 +284,12 @@ void DpdForceField::operator()(const State& s, BodyForces& out) {
   // Each thread owns a block of positions. Every position's force is the sum, in this order, of
   // the opposites of its pairs from below (ascending) and then its pairs above (ascending), for any
   // number of blocks: first the pairs that reach into a later block leave their force in their
-  // slot; then each block takes the slots that reach into it, all from lower positions than its
-  // own, and walks its rows, adding each pair to both positions when both are its own.
+  // slot (shared out evenly between the threads); then each block takes the slots that reach into
+  // it, all from lower positions than its own, and walks its rows, adding each pair to both
+  // positions when both are its own. Which pairs cross depends on the list and the blocks only:
+  // found once per list build.
+  const std::int64_t cross_builds = cross_builds_;
+  const int cross_blocks = cross_blocks_;
 #pragma omp parallel
   {
     int blocks = 1, b = 0;  // the threads the region got
@@ -272,7 +312,17 @@ void DpdForceField::operator()(const State& s, BodyForces& out) {
     };
     const std::size_t begin = block_begin(b), end = block_begin(b + 1);
     std::fill(force_.begin() + static_cast<std::ptrdiff_t>(3 * begin), force_.begin() + static_cast<std::ptrdiff_t>(3 * end), 0.0);
-    if (blocks > 1) rows(begin, end, end, true, s.box);
+    if (blocks > 1) {
+      if (cross_builds != list_.builds() || cross_blocks != blocks) {
+#pragma omp single
+        cross_tasks_.resize(static_cast<std::size_t>(blocks));
+        find_cross_tasks(begin, end, cross_tasks_[static_cast<std::size_t>(b)]);
+#pragma omp barrier
+      }
+      cross_share(b, blocks, s.box);
+#pragma omp single nowait
+      cross_builds_ = list_.builds(), cross_blocks_ = blocks;
+    }
 #pragma omp barrier
     const std::size_t own_slots = list_.first_pair(begin);
     for (std::size_t k = begin; k < end; ++k)
@@ -283,7 +333,7 @@ void DpdForceField::operator()(const State& s, BodyForces& out) {
         force_[3 * k + 1] -= f[1];
         force_[3 * k + 2] -= f[2];
       }
-    rows(begin, end, end, false, s.box);
+    rows(begin, end, end, s.box);
     // Each thread writes the forces of the particles it will kick (the integrator's static split of
     // the particle indices), not those of its positions, which are all over the arrays: written by
     // one core and read by the other, each cache line would cross between them.

@@ -107,6 +107,7 @@ void CellOrderedPairs::sort_into_cells(const Box& box, const double* x, const do
   }
   std::vector<std::int32_t> cell(n);
   std::vector<double> wx(n), wy(n), wz(n);
+#pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     wx[i] = wrapped(x[i], L.x(), inv.x());
     wy[i] = wrapped(y[i], L.y(), inv.y());
@@ -138,6 +139,30 @@ void CellOrderedPairs::sort_into_cells(const Box& box, const double* x, const do
   }
 }
 
+std::vector<std::size_t> CellOrderedPairs::scan_blocks(int blocks) const {
+  // A cell's rows scan the rest of their own cell and the cells of its runs. The cells of the
+  // first layers have many more cells above them (their neighbours across the periodic boundary)
+  // than those of the last: blocks of equal numbers of rows would leave the first block with
+  // the most work.
+  const std::size_t cells = search_runs_.size(), n = order_.size();
+  std::vector<double> work(cells + 1, 0.0);  // prefix sums over the cells
+  for (std::size_t c = 0; c < cells; ++c) {
+    const auto size = static_cast<double>(cell_start_[c + 1] - cell_start_[c]);
+    double scanned = 0.0;
+    for (const auto& [first, last] : search_runs_[c])
+      scanned += static_cast<double>(cell_start_[static_cast<std::size_t>(last) + 1] - cell_start_[static_cast<std::size_t>(first)]);
+    work[c + 1] = work[c] + size * (scanned - 0.5 * (size + 1.0));
+  }
+  std::vector<std::size_t> bound(static_cast<std::size_t>(blocks) + 1, n);
+  bound[0] = 0;
+  for (int b = 1; b < blocks; ++b) {
+    const double target = work[cells] * b / blocks;
+    const auto c = static_cast<std::size_t>(std::lower_bound(work.begin(), work.end(), target) - work.begin());
+    bound[static_cast<std::size_t>(b)] = std::max(bound[static_cast<std::size_t>(b) - 1], static_cast<std::size_t>(cell_start_[std::min(c, cells)]));
+  }
+  return bound;
+}
+
 void CellOrderedPairs::find_pairs(const Box& box) {
   const std::size_t n = order_.size();
   const Vec3 L = box.edges(), inv = box.inverse_edges();
@@ -152,10 +177,10 @@ void CellOrderedPairs::find_pairs(const Box& box) {
   found_.resize(std::max(found_.size(), static_cast<std::size_t>(blocks)));
   std::vector<std::size_t> found_count(static_cast<std::size_t>(blocks), 0);
   std::vector<std::size_t> row_end(n);
+  const std::vector<std::size_t> bound = scan_blocks(blocks);
 #pragma omp parallel for schedule(static, 1) num_threads(blocks)
   for (int b = 0; b < blocks; ++b) {
-    const std::size_t begin = n * static_cast<std::size_t>(b) / static_cast<std::size_t>(blocks);
-    const std::size_t end = n * (static_cast<std::size_t>(b) + 1) / static_cast<std::size_t>(blocks);
+    const std::size_t begin = bound[static_cast<std::size_t>(b)], end = bound[static_cast<std::size_t>(b) + 1];
     // The pairs are written at `count` and kept by advancing it: no branch on the distance, which
     // is as often in reach as not.
     std::vector<std::int32_t>& mine = found_[static_cast<std::size_t>(b)];
@@ -197,8 +222,7 @@ void CellOrderedPairs::find_pairs(const Box& box) {
   partners_.clear();
   for (int b = 0; b < blocks; ++b) {
     const std::size_t offset = partners_.size();
-    const std::size_t begin = n * static_cast<std::size_t>(b) / static_cast<std::size_t>(blocks);
-    const std::size_t end = n * (static_cast<std::size_t>(b) + 1) / static_cast<std::size_t>(blocks);
+    const std::size_t begin = bound[static_cast<std::size_t>(b)], end = bound[static_cast<std::size_t>(b) + 1];
     for (std::size_t k = begin; k < end; ++k) first_pair_[k + 1] = row_end[k] + offset;
     const auto& mine = found_[static_cast<std::size_t>(b)];
     partners_.insert(partners_.end(), mine.begin(), mine.begin() + static_cast<std::ptrdiff_t>(found_count[static_cast<std::size_t>(b)]));
@@ -206,30 +230,58 @@ void CellOrderedPairs::find_pairs(const Box& box) {
 }
 
 void CellOrderedPairs::list_lower_pairs() {
-  // A counting sort of the pair slots by upper position. Each thread sorts the slots whose upper
-  // position lies in its own range, scanning all slots in ascending order: the same list as one
-  // thread's, each position's slots ascending.
+  // A counting sort of the pair slots by upper position, in parallel. Each thread counts the upper
+  // positions of the pairs of its own rows (a histogram of its own); the histograms are turned into
+  // places, position by position in thread order; then each thread puts its slots at its places.
+  // The rows of thread t precede those of t + 1, so each position's slots come out ascending: the
+  // same list as one thread's, and each thread reads only its share of the pairs.
   const std::size_t n = order_.size(), pairs = partners_.size();
-  lower_start_.assign(n + 1, 0);
+  lower_start_.resize(n + 1);
   lower_.resize(pairs);
   const std::int32_t* partner = partners_.data();
-#pragma omp parallel
+  std::size_t max_threads = 1;
+#ifdef _OPENMP
+  max_threads = static_cast<std::size_t>(omp_get_max_threads());
+#endif
+  lower_place_.assign(max_threads * n, 0);
+  std::vector<std::size_t> range_total(max_threads + 1, 0);
+#pragma omp parallel num_threads(static_cast<int>(max_threads))
   {
     std::size_t threads = 1, t = 0;
 #ifdef _OPENMP
     threads = static_cast<std::size_t>(omp_get_num_threads());
     t = static_cast<std::size_t>(omp_get_thread_num());
 #endif
-    const auto lo = static_cast<std::int32_t>(n * t / threads), hi = static_cast<std::int32_t>(n * (t + 1) / threads);
-    for (std::size_t s = 0; s < pairs; ++s)
-      if (partner[s] >= lo && partner[s] < hi) ++lower_start_[static_cast<std::size_t>(partner[s]) + 1];
+    // Rows split by pairs (the first rows have more); positions split evenly for the places.
+    const auto first_row = [&](std::size_t u) {
+      const auto it = std::lower_bound(first_pair_.begin(), first_pair_.end() - 1, pairs * u / threads);
+      return static_cast<std::size_t>(it - first_pair_.begin());
+    };
+    const std::size_t row_lo = first_row(t), row_hi = t + 1 == threads ? n : first_row(t + 1);
+    const std::size_t pos_lo = n * t / threads, pos_hi = n * (t + 1) / threads;
+    std::size_t* mine = lower_place_.data() + t * n;
+    for (std::size_t s = first_pair_[row_lo]; s < first_pair_[row_hi]; ++s) ++mine[partner[s]];
 #pragma omp barrier
-#pragma omp single
-    for (std::size_t k = 0; k < n; ++k) lower_start_[k + 1] += lower_start_[k];
-    std::vector<std::size_t> next(lower_start_.begin() + lo, lower_start_.begin() + hi);
-    for (std::size_t k = 0; k < n; ++k)
-      for (std::size_t s = first_pair_[k]; s < first_pair_[k + 1]; ++s)
-        if (partner[s] >= lo && partner[s] < hi) lower_[next[static_cast<std::size_t>(partner[s] - lo)]++] = static_cast<std::int32_t>(s);
+    std::size_t total = 0;
+    for (std::size_t k = pos_lo; k < pos_hi; ++k)
+      for (std::size_t u = 0; u < threads; ++u) total += lower_place_[u * n + k];
+    range_total[t + 1] = total;
+#pragma omp barrier
+    std::size_t place = 0;
+    for (std::size_t u = 0; u <= t; ++u) place += range_total[u];
+    for (std::size_t k = pos_lo; k < pos_hi; ++k) {
+      lower_start_[k] = place;
+      for (std::size_t u = 0; u < threads; ++u) {
+        std::size_t& count = lower_place_[u * n + k];
+        const std::size_t c = count;
+        count = place;
+        place += c;
+      }
+    }
+    if (t + 1 == threads) lower_start_[n] = place;
+#pragma omp barrier
+    for (std::size_t k = row_lo; k < row_hi; ++k)
+      for (std::size_t s = first_pair_[k]; s < first_pair_[k + 1]; ++s) lower_[mine[partner[s]]++] = static_cast<std::int32_t>(s);
   }
 }
 

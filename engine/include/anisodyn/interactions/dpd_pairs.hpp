@@ -19,8 +19,8 @@
 // of that order each step, so that partners are near each other in memory. Every pair is
 // evaluated once, from its lower position, and its force added to both positions at once. Each
 // thread owns a contiguous block of positions; a pair that reaches into a later block is evaluated
-// first, by the same code, into its slot, and the owner of its upper position takes it before its
-// own pairs. So every position adds the opposites of its pairs from below (ascending), then its
+// first, by the same code, into its slot (these pairs of all blocks shared out evenly between the
+// threads), and the owner of its upper position takes it before its own pairs. So every position adds the opposites of its pairs from below (ascending), then its
 // pairs above (ascending), whatever the number of threads, and both particles of a pair get
 // exactly opposite forces: Newton's third law holds pair by pair. The virial (by part, its six
 // independent elements: r_ij ⊗ F_ij is symmetric for central forces) and the energy are summed per
@@ -91,14 +91,17 @@ class DpdForceField {
   void update_list(const State& s, std::size_t n);
   /// Copies the n liquid particles into the arrays of the list's order.
   void gather(const Particles& p, std::size_t n);
-  /// The pairs of rows [begin, end), a block ending at block_end: with cross_only, only those
-  /// reaching past block_end, into their slots; otherwise all of them, into force_ (both positions
+  /// All the pairs of rows [begin, end), a block ending at block_end, into force_ (both positions
   /// when both are below block_end) and the rows' sums.
-  void rows(std::size_t begin, std::size_t end, std::size_t block_end, bool cross_only, const Box& box);
+  void rows(std::size_t begin, std::size_t end, std::size_t block_end, const Box& box);
   /// Pairs m_begin … m_end − 1 of row k; first_candidate: their place among the group's pairs.
   struct RowTask {
     std::size_t k, m_begin, m_end, first_candidate;
   };
+  /// The pairs of rows [begin, end) that reach past end, one task per row, numbered in order.
+  void find_cross_tasks(std::size_t begin, std::size_t end, std::vector<RowTask>& cross) const;
+  /// Part `share` of `shares` (equal in candidates) of all the blocks' cross tasks, into their slots.
+  void cross_share(int share, int shares, const Box& box);
   /// Evaluates a group of row tasks, the noise of all their pairs in one batch: with cross_only
   /// into their slots, otherwise into force_ (both positions when both are below block_end) and
   /// the rows' sums. One compiled body for both, so that a pair's force has the same bits either way.
@@ -122,6 +125,9 @@ class DpdForceField {
   std::vector<std::uint32_t> id_;
   std::unique_ptr<double[]> slot_force_;  // 3 per listed pair: the force on the lower position (pairs across blocks only)
   std::size_t slot_capacity_ = 0;
+  std::vector<std::vector<RowTask>> cross_tasks_;  // per block: its pairs across blocks
+  std::int64_t cross_builds_ = -1;                 // the list build and block count they are of
+  int cross_blocks_ = 0;
   std::vector<double> force_;       // 3 per position
   std::vector<double> partial_;     // kSums per group of kRowsPerGroup positions
   DpdSums sums_;

@@ -69,6 +69,8 @@ class CellOrderedPairs {
   void sort_into_cells(const Box& box, const double* x, const double* y, const double* z, std::size_t n);
   void find_pairs(const Box& box);
   void list_lower_pairs();
+  /// Boundaries of `blocks` blocks of whole cells' rows with about the same search work each.
+  std::vector<std::size_t> scan_blocks(int blocks) const;
 
   double cutoff_, skin_;
   Box box_;
@@ -86,6 +88,7 @@ class CellOrderedPairs {
   std::vector<std::int32_t> partners_;
   std::vector<std::size_t> lower_start_;              // [n + 1]
   std::vector<std::int32_t> lower_;
+  std::vector<std::size_t> lower_place_;             // per thread and position: the count, then the next place
   std::vector<std::vector<std::int32_t>> found_;      // per thread block: the pairs it found (a buffer that only grows)
   std::int64_t builds_ = 0;
 };
