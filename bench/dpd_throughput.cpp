@@ -1,7 +1,7 @@
 // DPD throughput: particle-steps per second of the Groot–Warren liquid (spec 30 §2: ρ = 3, a = 25,
 // γ = 4.5, k_BT = 1, Δt = 0.005, r_c = 1, skin 0.3), as anisodyn-dpd steps it: the DPD pair forces
 // (interactions/dpd_pairs.hpp: once per pair, keyed noise), velocity Verlet (RigidBodyNve with
-// point bodies) and the per-step kinetic tensor of the observables. N particles in a cubic box at
+// point bodies) and the per-step kinetic tensor of the observables (core/ordered_sum.hpp, as the runner). N particles in a cubic box at
 // ρ = 3 (N = 24000: box 20, the benchmark; 1536: box 8); one and two threads (the results
 // are the same bits). The liquid starts from uniform random positions and Maxwell–Boltzmann
 // velocities and is relaxed for 200 steps before timing. Arguments: particles, threads.
@@ -15,6 +15,7 @@
 #include <omp.h>
 #endif
 
+#include "anisodyn/core/ordered_sum.hpp"
 #include "anisodyn/core/rng.hpp"
 #include "anisodyn/integrate/rigid_body_nve.hpp"
 #include "anisodyn/interactions/dpd_pairs.hpp"
@@ -47,12 +48,15 @@ void BM_DpdLiquid(benchmark::State& bs) {
   const char* skin = std::getenv("ANISODYN_BENCH_DPD_SKIN");  // default 0.3, anisodyn-dpd's and LAMMPS's
   DpdForceField field({25.0, 4.5, 1.0, 1.0}, 0.005, 11, skin ? std::atof(skin) : 0.3);
   RigidBodyNve nve(0.005, {{1.0, Vec3::Zero()}}, [&field](const State& st, BodyForces& out) { field(st, out); });
-  double kinetic = 0.0;
+  Mat3 kinetic = Mat3::Zero();
   auto step = [&] {
     field.set_noise_step(static_cast<std::uint64_t>(s.step) + 1);
     nve.step(s);
     ++s.step;
-    for (std::size_t i = 0; i < n; ++i) kinetic += s.particles.velocity(i).squaredNorm();  // the runner's T_kin sum
+    kinetic += ordered_sum(n, Mat3::Zero().eval(), [&](std::size_t i) -> Mat3 {  // the runner's kinetic tensor
+      const Vec3 v = s.particles.velocity(i);
+      return v * v.transpose();
+    });
   };
   for (int k = 0; k < 200; ++k) step();
   const auto builds0 = field.list().builds();

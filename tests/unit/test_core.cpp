@@ -1,9 +1,17 @@
-// Core: periodic box, quaternion helpers and the counter-based RNG, against closed forms.
+// Core: periodic box, quaternion helpers and the counter-based RNG, against closed forms; the
+// ordered sum against its chunked serial definition.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include "anisodyn/core/box.hpp"
+#include "anisodyn/core/ordered_sum.hpp"
 #include "anisodyn/core/quaternion.hpp"
 #include "anisodyn/core/rng.hpp"
 
@@ -118,4 +126,34 @@ TEST(Rng, IndexIsUniform) {
   for (int i = 0; i < draws; ++i) counts[rng.index(n)]++;
   const double expected = double(draws) / n, sd = std::sqrt(expected * (1 - 1.0 / n));
   for (int c : counts) EXPECT_NEAR(c, expected, 5 * sd);
+}
+
+TEST(OrderedSum, TheSameBitsForAnyThreadCountAndTheChunkedSerialSum) {
+  // Terms of mixed magnitude, so that another association would change the last bits.
+  const std::size_t n = 10007;
+  std::vector<double> term(n);
+  Rng rng(3, 0);
+  for (double& t : term) t = rng.uniform(-1.0, 1.0) * std::pow(10.0, rng.uniform(0.0, 4.0));
+  // Written out here: chunks of 2048 in index order, the chunk sums in chunk order.
+  double want = 0.0;
+  for (std::size_t c = 0; c * 2048 < n; ++c) {
+    double chunk = 0.0;
+    for (std::size_t i = c * 2048; i < std::min(n, (c + 1) * 2048); ++i) chunk += term[i];
+    want += chunk;
+  }
+  double plain = 0.0;
+  for (const double t : term) plain += t;
+  EXPECT_NE(want, plain) << "the terms do not tell one association from another";
+  for (int threads : {1, 2, 3}) {
+#ifdef _OPENMP
+    omp_set_num_threads(threads);
+#endif
+    EXPECT_EQ(ordered_sum(n, 0.0, [&](std::size_t i) { return term[i]; }), want) << threads << " threads";
+    const Mat3 m = ordered_sum(n, Mat3::Zero().eval(), [&](std::size_t i) -> Mat3 { return term[i] * Mat3::Identity(); });
+    EXPECT_EQ(m(1, 1), want);
+  }
+  EXPECT_EQ(ordered_sum(0, 1.5, [&](std::size_t) { return 1.0; }), 1.5) << "no terms: the zero given";
+#ifdef _OPENMP
+  omp_set_num_threads(omp_get_num_procs());
+#endif
 }

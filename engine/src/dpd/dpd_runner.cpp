@@ -1,9 +1,12 @@
 #include "anisodyn/dpd/dpd_runner.hpp"
 
+#include "anisodyn/core/ordered_sum.hpp"
+
 #include <cmath>
 
 #include "anisodyn/core/error.hpp"
 #include "anisodyn/core/keyed_random.hpp"
+#include "anisodyn/core/ordered_sum.hpp"
 
 namespace anisodyn {
 
@@ -292,11 +295,10 @@ double DpdRunner::advance() {
 
 void DpdRunner::add_to_row() {
   const Particles& p = state_.particles;
-  Mat3 kinetic = Mat3::Zero();
-  for (std::size_t i = 0; i < p.size(); ++i) {
+  const Mat3 kinetic = ordered_sum(p.size(), Mat3::Zero().eval(), [&](std::size_t i) -> Mat3 {
     const Vec3 v = p.velocity(i);
-    kinetic += inertia_[static_cast<std::size_t>(p.species[i])].mass * (v * v.transpose());
-  }
+    return inertia_[static_cast<std::size_t>(p.species[i])].mass * (v * v.transpose());
+  });
   const double n = static_cast<double>(p.size());
   std::array<Mat3, 3> virial = pairs_->last_sums().virial;
   double energy = pairs_->last_sums().energy;
