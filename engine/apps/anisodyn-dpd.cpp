@@ -43,8 +43,8 @@ tool::Description description() {
   d.cost = {{"kind", "model"},
             {"work", "particle-steps"},
             {"amount", {"particles", {{"rule", "time_steps"}}}},
-            {"rate", 4.99e6},
-            {"measured", "bench/peers/dpd_side_by_side.sh, 2026-11-25 08:55: 24000 particles at rho = 3, gamma = 4.5, one core, median of 3 (docs/performance.md)"},
+            {"rate", 5.13e6},
+            {"measured", "bench/peers/dpd_side_by_side.sh, 2026-11-25 12:15: 24000 particles at rho = 3, gamma = 4.5, one core, median of 5 (docs/performance.md)"},
             {"note", "pure liquid"}};
   return d;
 }
