@@ -1,7 +1,8 @@
 // anisodyn-flow: steady-flow profiles of anisodyn-dpd runs (spec 30 §6 and §8; studies C2, C3):
 // density and v_x across the channel between walls, with the slip length of the Couette method,
-// and density and mid-plane v_x around a colloid held in a flow. The rows inside `window` (the
-// steady state) are averaged; errors are jackknife over replicas (or blocks of a single replica).
+// the viscosity of a periodic Poiseuille flow, and density and mid-plane v_x around a colloid held
+// in a flow. The rows inside `window` (the steady state) are averaged; errors are jackknife over
+// replicas (or blocks of a single replica).
 #include <cstdio>
 
 #include "anisodyn/analysis/flow_profiles.hpp"
@@ -24,6 +25,14 @@ std::optional<SlipFitSettings> parse_slip(StageRun& run) {
   if (!(s.fit_to > s.fit_from)) run.fail("slip.fit_to", "expected fit_to > fit_from");
   if (!(s.top_to > s.top_from)) run.fail("slip.top_to", "expected top_to > top_from");
   return s;
+}
+
+std::optional<PoiseuilleSettings> parse_poiseuille(StageRun& run) {
+  auto node = run.cfg.optional_object("poiseuille");
+  if (!node) return std::nullopt;
+  PoiseuilleSettings p;
+  p.force = node->positive("force");
+  return p;
 }
 
 void write_tables(StageRun& run, const FlowResult& r) {
@@ -61,12 +70,16 @@ void write_scalars(StageRun& run, const FlowResult& r, const SlipFitSettings& s)
 
 tool::Description description() {
   return analysis_description(
-      {tool::optional("slip", "object", nullptr,
+      {tool::optional("poiseuille", "object", nullptr,
+                      "{force}: the viscosity of a periodic Poiseuille flow (no walls; anisodyn-dpd drives +force along x on the lower "
+                      "half of the box and -force on the upper) from a fit of the slab profile"),
+       tool::optional("slip", "object", nullptr,
                       "{fit_from (1.5), fit_to (5), top_from (7), top_to (8), height (8)}: the Couette slip length of spec 30 §6 from the "
                       "slab profile (absent: profiles only)"),
        tool::optional("blocks", "integer", 10, "a single replica's rows in this many blocks for the errors (several replicas: one sample each)")},
       "tables profile_z (density, v_x per slab) and profile_r (density, mid-plane v_x per shell); scalar v_x_mean with slabs; with "
-      "slip, scalars slip_length, shear_gradient, v_top, shear_rate_apparent");
+      "slip, scalars slip_length, shear_gradient, v_top, shear_rate_apparent; with poiseuille, scalars viscosity_poiseuille and "
+      "poiseuille_amplitude");
 }
 
 }  // namespace
@@ -76,6 +89,8 @@ int main(int argc, char** argv) {
                             description()};
   return run_analysis_stage(argc, argv, info, [](StageRun& run) {
     const std::optional<SlipFitSettings> slip = parse_slip(run);
+    const std::optional<PoiseuilleSettings> poiseuille = parse_poiseuille(run);
+    if (slip && poiseuille) run.fail("poiseuille", "expected either slip (a channel between walls) or poiseuille (a periodic box), not both");
     const auto blocks = static_cast<std::size_t>(run.cfg.positive_integer("blocks", 10));
     run.cfg.reject_unless(run.inputs.size() == 1, "blocks", "with several replicas (each replica is one sample)");
     if (blocks < 2 && run.inputs.size() == 1) run.fail("blocks", "expected at least 2 blocks for an error bar");
@@ -91,11 +106,22 @@ int main(int argc, char** argv) {
       for (ProfileSums& s : p.samples) samples.push_back(std::move(s));
     }
     if (slip && geometry.z_bin == 0.0) run.fail("slip", "no 'slip': it has no effect, the runs have no slab profile (profiles.z_bin)");
-    const FlowResult r = compute_flow(geometry, samples, slip);
+    if (poiseuille && geometry.z_bin == 0.0) run.fail("poiseuille", "no 'poiseuille': it has no effect, the runs have no slab profile (profiles.z_bin)");
+    const FlowResult r = compute_flow(geometry, samples, slip, poiseuille);
     write_tables(run, r);
     if (r.v_mean)
       run.out.scalar({"v_x_mean", r.v_mean->value, r.v_mean->error, "r_c/tau", "mean v_x of all liquid particles (sum over slabs / number)",
                       {{"samples", r.samples}, {"rows", r.rows}}});
     if (slip) write_scalars(run, r, *slip);
+    if (poiseuille) {
+      const nlohmann::json details = {{"force", poiseuille->force}, {"samples", r.samples}, {"rows", r.rows},
+                                      {"error", "jackknife over the samples (replicas, or blocks of one replica)"}};
+      run.out.scalar({"poiseuille_amplitude", r.poiseuille_amplitude->value, r.poiseuille_amplitude->error, "1/(r_c tau)",
+                      "A of v_x = +-A u (h - u) + B, the least-squares fit of the slab velocities (h: half the box along z)", details});
+      run.out.scalar({"viscosity_poiseuille", r.viscosity->value, r.viscosity->error, "kT tau/r_c^3",
+                      "eta = rho f / (2 A), rho the mean density of the slabs", details});
+      if (!run.opt.quiet)
+        std::fprintf(stderr, "anisodyn-flow: Poiseuille viscosity %.4g ± %.2g\n", r.viscosity->value, r.viscosity->error);
+    }
   });
 }

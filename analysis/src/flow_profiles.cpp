@@ -49,11 +49,30 @@ double ratio(double a, double b) { return b > 0.0 ? a / b : NAN; }
 /// Everything the result reports, as one vector, from pooled sums (so that the jackknife treats all alike).
 struct Estimates {
   std::vector<double> density_z, vx_z, density_r, vx_r;
-  double slip = NAN, gradient = NAN, v_top = NAN, shear_rate = NAN, v_mean = NAN;
+  double slip = NAN, gradient = NAN, v_top = NAN, shear_rate = NAN, v_mean = NAN, amplitude = NAN, viscosity = NAN;
   std::size_t fit_bins = 0;
 };
 
-Estimates estimate(const FlowGeometry& g, const ProfileSums& t, const std::optional<SlipFitSettings>& slip) {
+/// A and η of the periodic Poiseuille profile (flow_profiles.hpp) from the slab velocities.
+void fit_poiseuille(const FlowGeometry& g, const ProfileSums& t, const PoiseuilleSettings& p, Estimates& e) {
+  const std::size_t bins = t.z_count.size();
+  const double h = 0.5 * static_cast<double>(bins) * g.z_bin;
+  double sx = 0, sv = 0, sxx = 0, sxv = 0, n = 0, count = 0;
+  for (std::size_t k = 0; k < bins; ++k) {
+    count += t.z_count[k];
+    if (!std::isfinite(e.vx_z[k])) continue;
+    const double z = (static_cast<double>(k) + 0.5) * g.z_bin;
+    const double u = z < h ? z : z - h, x = (z < h ? 1.0 : -1.0) * u * (h - u);
+    sx += x, sv += e.vx_z[k], sxx += x * x, sxv += x * e.vx_z[k], n += 1;
+  }
+  if (n < 3) return;
+  e.amplitude = (n * sxv - sx * sv) / (n * sxx - sx * sx);
+  const double density = count / t.rows / (g.area * 2.0 * h);
+  e.viscosity = density * p.force / (2.0 * e.amplitude);
+}
+
+Estimates estimate(const FlowGeometry& g, const ProfileSums& t, const std::optional<SlipFitSettings>& slip,
+                   const std::optional<PoiseuilleSettings>& poiseuille) {
   Estimates e;
   const double rows = t.rows;
   for (std::size_t k = 0; k < t.z_count.size(); ++k) {
@@ -68,6 +87,7 @@ Estimates estimate(const FlowGeometry& g, const ProfileSums& t, const std::optio
   double all_v = 0.0, all_n = 0.0;
   for (std::size_t k = 0; k < t.z_count.size(); ++k) all_v += t.z_vx[k], all_n += t.z_count[k];
   e.v_mean = ratio(all_v, all_n);
+  if (poiseuille && !t.z_count.empty()) fit_poiseuille(g, t, *poiseuille, e);
   if (!slip || t.z_count.empty()) return e;
   double sz = 0, sv = 0, szz = 0, szv = 0, n = 0, top_v = 0, top_n = 0;
   for (std::size_t k = 0; k < t.z_count.size(); ++k) {
@@ -126,7 +146,8 @@ RunProfiles read_profiles(const std::string& path, std::size_t blocks, const std
   return out;
 }
 
-FlowResult compute_flow(const FlowGeometry& g, const std::vector<ProfileSums>& samples, const std::optional<SlipFitSettings>& slip) {
+FlowResult compute_flow(const FlowGeometry& g, const std::vector<ProfileSums>& samples, const std::optional<SlipFitSettings>& slip,
+                        const std::optional<PoiseuilleSettings>& poiseuille) {
   FlowResult r;
   r.samples = samples.size();
   CurveSamples sums;
@@ -138,10 +159,10 @@ FlowResult compute_flow(const FlowGeometry& g, const std::vector<ProfileSums>& s
   const std::size_t nz = shape.z_count.size(), nr = shape.r_count.size();
   // Every reported estimate as one vector: density_z, v_x(z), density_r, v_x(r), then the scalars.
   const auto estimates = [&](const std::vector<double>& mean) {
-    const Estimates e = estimate(g, unflatten(mean, shape), slip);
+    const Estimates e = estimate(g, unflatten(mean, shape), slip, poiseuille);
     std::vector<double> out;
     for (const auto* part : {&e.density_z, &e.vx_z, &e.density_r, &e.vx_r}) out.insert(out.end(), part->begin(), part->end());
-    out.insert(out.end(), {e.v_mean, e.slip, e.gradient, e.v_top, e.shear_rate});
+    out.insert(out.end(), {e.v_mean, e.slip, e.gradient, e.v_top, e.shear_rate, e.amplitude, e.viscosity});
     return out;
   };
   const CurveEstimate est = jackknife_curve(sums, estimates);
@@ -167,7 +188,11 @@ FlowResult compute_flow(const FlowGeometry& g, const std::vector<ProfileSums>& s
     r.gradient = at(scalars + 2);
     r.v_top = at(scalars + 3);
     r.shear_rate = at(scalars + 4);
-    r.fit_bins = estimate(g, unflatten(mean_curve(sums.samples()), shape), slip).fit_bins;
+    r.fit_bins = estimate(g, unflatten(mean_curve(sums.samples()), shape), slip, poiseuille).fit_bins;
+  }
+  if (poiseuille && nz > 0) {
+    r.poiseuille_amplitude = at(scalars + 5);
+    r.viscosity = at(scalars + 6);
   }
   return r;
 }

@@ -34,7 +34,7 @@ tool::Description description() {
       tool::optional("walls", "object", nullptr,
                      "{type: flat_mie, height, gamma_surface: [bottom, top], shell (0.5), shell_noise}: flat Mie(50,49) walls at z = 0 and "
                      "z = height with friction shells (spec 30 §6; the box must be taller by the cut-off; absent: periodic in z)"),
-      tool::optional("drive", "object", nullptr, "{force: [fx, fy, fz], z_min, z_max}: a constant force on the liquid particles in the slab"),
+      tool::optional("drive", "object or array", nullptr, "{force: [fx, fy, fz], z_min, z_max}: a constant force on the liquid particles in the slab z_min <= z < z_max (z wrapped into the box); a list of such slabs adds up (two opposite ones: the periodic Poiseuille flow)"),
       tool::optional("profiles", "object", nullptr,
                      "{z_bin, radial_bin, radial_max, midplane_half_width (0.25)}: liquid number and v_x per slab along z and per shell "
                      "around the first colloid, per observation row (for anisodyn-flow)"),

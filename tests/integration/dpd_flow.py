@@ -2,8 +2,9 @@
 """anisodyn-dpd's walls, drive, profiles and fixed colloid (spec 30 §6, §8) and anisodyn-flow:
 
 1. a drive alone (no walls, periodic liquid): the total momentum grows by exactly f N dt per step
-   (internal forces cancel pair by pair), to round-off; anisodyn-observables finds that slope and
-   numpy's mean temperature;
+   (internal forces cancel pair by pair), to round-off; a list of slabs (two opposite halves, as in
+   a periodic Poiseuille flow, and a push on all) adds up to the impulse counted from the frames;
+   anisodyn-observables finds that slope and numpy's mean temperature;
 2. a Couette channel (walls at z = 0 with friction and z = 8 without, drive on z > 6): no liquid
    particle leaves the channel; the slab counts of every row add up to N; two threads give the same
    bits; SIGINT and SIGKILL resume bit for bit; with the drive on every particle, the liquid's x
@@ -59,6 +60,27 @@ with h5py.File("push.h5") as f:
 expected = np.outer(t, [0.01 * 648, -0.02 * 648, 0.0])
 err = np.abs(P - expected).max()
 print(f"drive alone: |P - f N t| <= {err:.1e} over {t[-1]:g} tau (P_x = {P[-1, 0]:.4f})")
+assert err < 1e-9, err
+
+# A list of slabs adds up: the lower half of the box pushed along +x and the upper half along -x,
+# plus a push along y on all of it. dP/dt = f_x (N_lower - N_upper) + f_y N, counted here from the
+# frames (z wrapped into the box) at every step's start, must match the momentum rows.
+write("pair.json", {"seed": 2, "time_step": 0.005, "steps": 200, "observe_every": 1, "liquid": {"a": 25, "gamma": 4.5},
+                    "frames": {"every_steps": 1},
+                    "drive": [{"force": [0.01, 0, 0], "z_max": 3}, {"force": [-0.01, 0, 0], "z_min": 3}, {"force": [0, 0.02, 0]}]})
+r = run([tool("anisodyn-dpd"), "-q", "--config", "pair.json", "--input", "bulk.h5", "--output", "pair.h5"])
+assert r.returncode == 0, r.stderr
+with h5py.File("pair.h5") as f:
+    P, t = observable(f, "momentum")
+    z = f["particles/all/position/value"][:, :, 2]
+z = z - 6.0 * np.floor(z / 6.0)
+# Velocity Verlet: the momentum after step n holds half of the drive at the start of step n and half
+# at its end, so each step's change is the mean of the two frames' drives, times dt.
+drive_x = 0.01 * ((z < 3).sum(axis=1) - (z >= 3).sum(axis=1))
+change = 0.005 * 0.5 * (drive_x[:-1] + drive_x[1:])
+P_x = np.concatenate([[0.0], np.cumsum(change)])
+err = max(np.abs(P[:, 0] - P_x[-len(P):]).max(), np.abs(P[:, 1] - 0.02 * 648 * t).max())
+print(f"two opposite slabs and a push along y: |P - sum of the drives' impulses| <= {err:.1e} over {t[-1]:g} tau")
 assert err < 1e-9, err
 
 # anisodyn-observables on the same run: the momentum's slope is f N exactly, the temperature's mean numpy's.
@@ -177,6 +199,9 @@ bad = [
     ("a shell without wall friction", {**good, "walls": {**couette["walls"], "gamma_surface": [0, 0], "shell": 0.5}}, "channel.h5", "walls.shell"),
     ("liquid outside the channel", {**good, "walls": {**couette["walls"], "height": 7}}, "channel.h5", "/particles/all"),
     ("a drive slab upside down", {**good, "drive": {"force": [1, 0, 0], "z_min": 6, "z_max": 5}}, "channel.h5", "drive.z_max"),
+    ("a listed drive slab upside down", {**good, "drive": [{"force": [1, 0, 0]}, {"force": [1, 0, 0], "z_min": 6, "z_max": 5}]}, "channel.h5",
+     "drive[1].z_max"),
+    ("a drive that is neither object nor list", {**good, "drive": 0.05}, "channel.h5", "drive"),
     ("empty profiles", {**good, "profiles": {}}, "channel.h5", "profiles"),
     ("radial profiles without colloids", {**good, "profiles": {"radial_bin": 0.1}}, "channel.h5", "profiles.radial_bin"),
     ("radial_max without radial_bin", {**good, "profiles": {"z_bin": 0.1, "radial_max": 2}}, "channel.h5", "profiles.radial_max"),
@@ -188,6 +213,9 @@ for what, cfg, start, path in bad:
                      [path, ("bad.json", start)])
 for what, cfg, inp, path in [("slip without slab profiles", {"slip": {}}, "fixed.h5", "slip"),
                              ("a run without profiles", {}, "push.h5", "/observables/profile_z_count"),
-                             ("a fit window upside down", {"slip": {"fit_from": 5, "fit_to": 1}}, "couette.h5", "slip.fit_to")]:
+                             ("a fit window upside down", {"slip": {"fit_from": 5, "fit_to": 1}}, "couette.h5", "slip.fit_to"),
+                             ("both fits", {"slip": {}, "poiseuille": {"force": 0.05}}, "couette.h5", "poiseuille"),
+                             ("a Poiseuille fit without a force", {"poiseuille": {}}, "couette.h5", "poiseuille.force"),
+                             ("a Poiseuille fit without slab profiles", {"poiseuille": {"force": 0.05}}, "fixed.h5", "poiseuille")]:
     expect_bad_input("anisodyn-flow, " + what, [tool("anisodyn-flow"), "--config", write("bad.json", cfg), "--input", inp, "--output", "bad.h5"],
                      [path])

@@ -57,13 +57,22 @@ DpdProtocol parse_dpd_protocol(tool::ConfigNode& cfg) {
     walls.kT = p.liquid.kT;
     p.walls = walls;
   }
-  if (auto d = cfg.optional_object("drive")) {
-    DpdProtocol::Drive drive;
-    drive.force = d->vec3("force");
-    drive.z_min = d->number("z_min", drive.z_min);
-    drive.z_max = d->number("z_max", drive.z_max);
-    if (!(drive.z_min < drive.z_max)) d->fail("z_max", "expected z_max above z_min");
-    p.drive = drive;
+  if (cfg.has("drive")) {
+    // One slab as an object, or several as a list of them.
+    const auto parse_drive = [](tool::ConfigNode& d) {
+      DpdProtocol::Drive drive;
+      drive.force = d.vec3("force");
+      drive.z_min = d.number("z_min", drive.z_min);
+      drive.z_max = d.number("z_max", drive.z_max);
+      if (!(drive.z_min < drive.z_max)) d.fail("z_max", "expected z_max above z_min");
+      return drive;
+    };
+    if (cfg.raw().at("drive").is_array())
+      for (tool::ConfigNode& d : cfg.objects("drive")) p.drives.push_back(parse_drive(d));
+    else {
+      tool::ConfigNode d = cfg.object("drive");
+      p.drives.push_back(parse_drive(d));
+    }
   }
   if (auto pr = cfg.optional_object("profiles")) {
     DpdProtocol::Profiles prof;

@@ -232,12 +232,13 @@ void DpdRunner::forces(const State& s, BodyForces& out) {
   (*pairs_)(s, out);
   if (colloids_) (*colloids_)(s, out);
   if (walls_) walls_->add(s, liquid_, out);
-  if (const auto& drive = protocol_.drive) {
+  if (!protocol_.drives.empty()) {
     const double lz = s.box.edges().z();
     for (const std::int32_t index : liquid_) {
       const auto i = static_cast<std::size_t>(index);
-      const double z = s.particles.z[i] + lz * s.particles.iz[i];
-      if (z >= drive->z_min && z < drive->z_max) out.force[i] += drive->force;
+      const double z = s.particles.z[i] - lz * std::floor(s.particles.z[i] / lz);  // in [0, L_z): between walls, z itself
+      for (const DpdProtocol::Drive& drive : protocol_.drives)
+        if (z >= drive.z_min && z < drive.z_max) out.force[i] += drive.force;
     }
   }
 }

@@ -15,6 +15,11 @@
 // centres lie in [fit_from, fit_to]; b = a/G (the distance below z = 0 at which the line reaches
 // zero; b > 0 is slip); v_top = Σ v_x / Σ n over the slabs in [top_from, top_to); γ̇ = v_top/height.
 // With slabs, v_x_mean = Σ v_x / Σ n over all of them (the mean flow past a fixed colloid, §8).
+//
+// Periodic Poiseuille flow (no walls; a drive of +f along x on z in [0, h) and −f on [h, 2h), the
+// box 2h tall): in steady state η v'' = ∓ρ f in each half, so v_x = ±A u (h − u) + B with u the
+// height above the half's bottom and A = ρ f / (2η). A least-squares line of the slab velocities
+// against x = ±u (h − u) gives A, and η = ρ f / (2A) with ρ the mean density of all slabs.
 #include <cstddef>
 #include <functional>
 #include <optional>
@@ -29,6 +34,10 @@ struct SlipFitSettings {
   double fit_from = 1.5, fit_to = 5.0;  // spec 30 §6
   double top_from = 7.0, top_to = 8.0;
   double height = 8.0;                  // H of γ̇ = v_top/H
+};
+
+struct PoiseuilleSettings {
+  double force = 0.0;  // f, the drive along x on the lower half of the box (−f on the upper)
 };
 
 /// One sample's sums over its rows (each row's per-step means, summed), and the bin geometry.
@@ -59,9 +68,11 @@ struct FlowResult {
   std::vector<double> r, density_r, density_r_se, vx_r, vx_r_se;
   std::optional<ValueError> slip_length, gradient, v_top, shear_rate;
   std::optional<ValueError> v_mean;  // Σ v_x / Σ n over all slabs: the liquid's mean flow velocity
+  std::optional<ValueError> poiseuille_amplitude, viscosity;  // A and η of the periodic Poiseuille fit
   std::size_t samples = 0, rows = 0, fit_bins = 0;
 };
 
-FlowResult compute_flow(const FlowGeometry& geometry, const std::vector<ProfileSums>& samples, const std::optional<SlipFitSettings>& slip);
+FlowResult compute_flow(const FlowGeometry& geometry, const std::vector<ProfileSums>& samples, const std::optional<SlipFitSettings>& slip,
+                        const std::optional<PoiseuilleSettings>& poiseuille = std::nullopt);
 
 }  // namespace anisodyn::analysis

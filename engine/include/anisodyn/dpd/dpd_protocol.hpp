@@ -10,7 +10,7 @@
 //                 "mass_density": 3, "site_spacing": 0.5},
 //    "frame_species": ["rod"],
 //    "walls": {"type": "flat_mie", "height": 8, "gamma_surface": [3.333, 0], "shell": 0.5, "shell_noise": "vector3d"},
-//    "drive": {"force": [0.01, 0, 0], "z_min": 6},
+//    "drive": {"force": [0.01, 0, 0], "z_min": 6}  (or a list of such slabs),
 //    "profiles": {"z_bin": 0.1, "radial_bin": 0.1, "radial_max": 4, "midplane_half_width": 0.25}}
 // Reduced units of spec 30 §1: lengths in r_c, energies in kT, masses in m (the species' masses).
 #include <cstdint>
@@ -55,12 +55,13 @@ struct DpdProtocol : run::TimeStepRun {
   std::vector<std::string> frame_species;
   /// Flat walls at z = 0 and z = height (spec 30 §6); absent: periodic in z.
   std::optional<FlatWallParameters> walls;
-  /// A constant force on the liquid particles with z_min ≤ z < z_max (unwrapped z); absent: none.
+  /// A constant force on the liquid particles with z_min ≤ z < z_max (z wrapped into the box);
+  /// several slabs add up (two opposite ones make the periodic Poiseuille flow); none: no drive.
   struct Drive {
     Vec3 force = Vec3::Zero();
     double z_min = -INFINITY, z_max = INFINITY;
   };
-  std::optional<Drive> drive;
+  std::vector<Drive> drives;
   /// Profiles of the liquid accumulated every step, written per observation row; absent: none.
   struct Profiles {
     double z_bin = 0.0;                     // > 0: number and Σ v_x per slab of this width along z
