@@ -142,4 +142,32 @@ TEST_F(RotationTest, AWindowGivesTheRotationOfTheTruncatedTrajectory) {
   }
 }
 
+TEST_F(RotationTest, TheCorrelationFitStopsWhereTheCorrelationFirstFallsBelowTheFloor) {
+  // Twenty rotors in two runs of 8 / D_r: C_1 falls below the floor 0.05 near t = 3 / (2 D_r) and then
+  // scatters around 0 by more than 0.05, so some later lags are back above it. Those are noise:
+  // the fit window must end before the first lag below the floor.
+  std::vector<std::string> paths;
+  for (unsigned r = 0; r < 2; ++r) {
+    paths.push_back(file("noisy" + std::to_string(r) + ".h5"));
+    free_rotors(20, 801, 0.02, 90 + r, true).write(paths.back());
+  }
+  RotationAnalysis a(RotationSettings{}, paths.size());
+  TrajectoryNeeds needs;
+  needs.orientations = true;
+  needs.optional_elements = {"rotation_vector"};
+  for_each_replica(paths, needs, [&](const Trajectory& t, std::size_t) { a.accumulate(t, -1); });
+  const RotationResult r = a.compute();
+  const double floor = RotationSettings{}.correlation_floor;
+  bool noise_above_floor = false;
+  for (const auto& axis : r.axes) {
+    std::size_t first_below = 0;
+    while (first_below < r.lag.size() && axis.c1[first_below] >= floor) ++first_below;
+    ASSERT_LT(first_below, r.lag.size());
+    for (std::size_t c = first_below; c < r.lag.size(); ++c) noise_above_floor |= axis.c1[c] >= floor;
+    EXPECT_LT(axis.window_c1.t_max, r.lag[first_below]) << "axis " << axis.axis;
+    EXPECT_NEAR(axis.D_c1.value, kDr, 5 * axis.D_c1.error + 0.1 * kDr) << "axis " << axis.axis << " window " << axis.window_c1.t_min << " " << axis.window_c1.t_max << " first below " << r.lag[first_below];
+  }
+  EXPECT_TRUE(noise_above_floor) << "the runs must have lags back above the floor after the decay, or this test tests nothing";
+}
+
 }  // namespace
