@@ -68,6 +68,16 @@ void write_scalars(StageRun& run, const FlowResult& r, const SlipFitSettings& s)
                  r.slip_length->error, r.gradient->value, r.gradient->error, r.shear_rate->value, r.shear_rate->error);
 }
 
+void write_poiseuille_scalars(StageRun& run, const FlowResult& r, const PoiseuilleSettings& p) {
+  const nlohmann::json details = {{"force", p.force}, {"samples", r.samples}, {"rows", r.rows},
+                                  {"error", "jackknife over the samples (replicas, or blocks of one replica)"}};
+  run.out.scalar({"poiseuille_amplitude", r.poiseuille_amplitude->value, r.poiseuille_amplitude->error, "1/(r_c tau)",
+                  "A of v_x = +-A u (h - u) + B, the least-squares fit of the slab velocities (h: half the box along z)", details});
+  run.out.scalar({"viscosity_poiseuille", r.viscosity->value, r.viscosity->error, "kT tau/r_c^3",
+                  "eta = rho f / (2 A), rho the mean density of the slabs", details});
+  if (!run.opt.quiet) std::fprintf(stderr, "anisodyn-flow: Poiseuille viscosity %.4g ± %.2g\n", r.viscosity->value, r.viscosity->error);
+}
+
 tool::Description description() {
   return analysis_description(
       {tool::optional("poiseuille", "object", nullptr,
@@ -113,15 +123,6 @@ int main(int argc, char** argv) {
       run.out.scalar({"v_x_mean", r.v_mean->value, r.v_mean->error, "r_c/tau", "mean v_x of all liquid particles (sum over slabs / number)",
                       {{"samples", r.samples}, {"rows", r.rows}}});
     if (slip) write_scalars(run, r, *slip);
-    if (poiseuille) {
-      const nlohmann::json details = {{"force", poiseuille->force}, {"samples", r.samples}, {"rows", r.rows},
-                                      {"error", "jackknife over the samples (replicas, or blocks of one replica)"}};
-      run.out.scalar({"poiseuille_amplitude", r.poiseuille_amplitude->value, r.poiseuille_amplitude->error, "1/(r_c tau)",
-                      "A of v_x = +-A u (h - u) + B, the least-squares fit of the slab velocities (h: half the box along z)", details});
-      run.out.scalar({"viscosity_poiseuille", r.viscosity->value, r.viscosity->error, "kT tau/r_c^3",
-                      "eta = rho f / (2 A), rho the mean density of the slabs", details});
-      if (!run.opt.quiet)
-        std::fprintf(stderr, "anisodyn-flow: Poiseuille viscosity %.4g ± %.2g\n", r.viscosity->value, r.viscosity->error);
-    }
+    if (poiseuille) write_poiseuille_scalars(run, r, *poiseuille);
   });
 }

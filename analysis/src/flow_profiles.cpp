@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "anisodyn/core/error.hpp"
+#include "anisodyn/analysis/fitting.hpp"
 #include "anisodyn/analysis/replica_statistics.hpp"
 #include "anisodyn/io/h5md.hpp"
 
@@ -57,16 +58,16 @@ struct Estimates {
 void fit_poiseuille(const FlowGeometry& g, const ProfileSums& t, const PoiseuilleSettings& p, Estimates& e) {
   const std::size_t bins = t.z_count.size();
   const double h = 0.5 * static_cast<double>(bins) * g.z_bin;
-  double sx = 0, sv = 0, sxx = 0, sxv = 0, n = 0, count = 0;
+  std::vector<double> x(bins);  // ±u (h − u); empty slabs have v_x NaN, which fit_line skips
+  double count = 0.0;
   for (std::size_t k = 0; k < bins; ++k) {
     count += t.z_count[k];
-    if (!std::isfinite(e.vx_z[k])) continue;
-    const double z = (static_cast<double>(k) + 0.5) * g.z_bin;
-    const double u = z < h ? z : z - h, x = (z < h ? 1.0 : -1.0) * u * (h - u);
-    sx += x, sv += e.vx_z[k], sxx += x * x, sxv += x * e.vx_z[k], n += 1;
+    const double z = (static_cast<double>(k) + 0.5) * g.z_bin, u = z < h ? z : z - h;
+    x[k] = (z < h ? 1.0 : -1.0) * u * (h - u);
   }
-  if (n < 3) return;
-  e.amplitude = (n * sxv - sx * sv) / (n * sxx - sx * sx);
+  const LinearFit fit = fit_line(x, e.vx_z);
+  if (fit.points < 3) return;
+  e.amplitude = fit.slope;
   const double density = count / t.rows / (g.area * 2.0 * h);
   e.viscosity = density * p.force / (2.0 * e.amplitude);
 }

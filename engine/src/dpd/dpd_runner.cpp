@@ -1,7 +1,5 @@
 #include "anisodyn/dpd/dpd_runner.hpp"
 
-#include "anisodyn/core/ordered_sum.hpp"
-
 #include <cmath>
 
 #include "anisodyn/core/error.hpp"

@@ -201,7 +201,7 @@ void DpdForceField::row_forces(const RowTask* tasks, std::size_t count, std::siz
   }
 }
 
-void DpdForceField::rows(std::size_t begin, std::size_t end, std::size_t block_end, const Box& box) {
+void DpdForceField::rows(std::size_t begin, std::size_t end, const Box& box) {
   // Rows go to row_forces in groups (aligned to multiples of kRowsPerGroup: blocks start at such
   // multiples), so that the noise of a group is drawn in one batch.
   thread_local std::vector<RowTask> tasks;  // this thread's, kept between calls
@@ -215,7 +215,7 @@ void DpdForceField::rows(std::size_t begin, std::size_t end, std::size_t block_e
       tasks.push_back({k, 0, size, candidates});
       candidates += size;
     }
-    row_forces(tasks.data(), tasks.size(), block_end, false, box);
+    row_forces(tasks.data(), tasks.size(), end, false, box);
   }
 }
 
@@ -232,13 +232,23 @@ void DpdForceField::find_cross_tasks(std::size_t begin, std::size_t end, std::ve
   }
 }
 
+namespace {
+
+/// The candidates of a block's cross tasks (numbered in order from 0).
+template <class Task>
+std::size_t candidates_of(const std::vector<Task>& tasks) {
+  return tasks.empty() ? 0 : tasks.back().first_candidate + (tasks.back().m_end - tasks.back().m_begin);
+}
+
+}  // namespace
+
 void DpdForceField::cross_share(int share, int shares, const Box& box) {
   // The pairs across blocks of all blocks, in block order, as one sequence of candidates: this
   // thread takes the tasks that start in its equal part of it. (Each block's own tasks would load
   // the first block with the pairs across the periodic boundary as well as those across its end,
   // and leave the last with none.) A pair's slot is the same whoever evaluates it.
   std::size_t total = 0;
-  for (const auto& tasks : cross_tasks_) total += tasks.empty() ? 0 : tasks.back().first_candidate + (tasks.back().m_end - tasks.back().m_begin);
+  for (const auto& tasks : cross_tasks_) total += candidates_of(tasks);
   const std::size_t lo = total * static_cast<std::size_t>(share) / static_cast<std::size_t>(shares);
   const std::size_t hi = total * static_cast<std::size_t>(share + 1) / static_cast<std::size_t>(shares);
   thread_local std::vector<RowTask> batch;
@@ -258,7 +268,7 @@ void DpdForceField::cross_share(int share, int shares, const Box& box) {
       }
       row_forces(batch.data(), batch.size(), 0, true, box);
     }
-    if (!tasks.empty()) offset += tasks.back().first_candidate + (tasks.back().m_end - tasks.back().m_begin);
+    offset += candidates_of(tasks);
   }
 }
 
@@ -333,7 +343,7 @@ void DpdForceField::operator()(const State& s, BodyForces& out) {
         force_[3 * k + 1] -= f[1];
         force_[3 * k + 2] -= f[2];
       }
-    rows(begin, end, end, s.box);
+    rows(begin, end, s.box);
     // Each thread writes the forces of the particles it will kick (the integrator's static split of
     // the particle indices), not those of its positions, which are all over the arrays: written by
     // one core and read by the other, each cache line would cross between them.

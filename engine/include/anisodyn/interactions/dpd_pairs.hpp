@@ -20,8 +20,9 @@
 // evaluated once, from its lower position, and its force added to both positions at once. Each
 // thread owns a contiguous block of positions; a pair that reaches into a later block is evaluated
 // first, by the same code, into its slot (these pairs of all blocks shared out evenly between the
-// threads), and the owner of its upper position takes it before its own pairs. So every position adds the opposites of its pairs from below (ascending), then its
-// pairs above (ascending), whatever the number of threads, and both particles of a pair get
+// threads), and the owner of its upper position takes it before its own pairs. So every position
+// adds the opposites of its pairs from below (ascending), then its pairs above (ascending),
+// whatever the number of threads, and both particles of a pair get
 // exactly opposite forces: Newton's third law holds pair by pair. The virial (by part, its six
 // independent elements: r_ij ⊗ F_ij is symmetric for central forces) and the energy are summed per
 // group of kRowsPerGroup positions (blocks hold whole groups; each a sum over the group's pairs with
@@ -91,9 +92,9 @@ class DpdForceField {
   void update_list(const State& s, std::size_t n);
   /// Copies the n liquid particles into the arrays of the list's order.
   void gather(const Particles& p, std::size_t n);
-  /// All the pairs of rows [begin, end), a block ending at block_end, into force_ (both positions
-  /// when both are below block_end) and the rows' sums.
-  void rows(std::size_t begin, std::size_t end, std::size_t block_end, const Box& box);
+  /// All the pairs of the block of rows [begin, end), into force_ (both positions when both are
+  /// below end) and the rows' sums.
+  void rows(std::size_t begin, std::size_t end, const Box& box);
   /// Pairs m_begin … m_end − 1 of row k; first_candidate: their place among the group's pairs.
   struct RowTask {
     std::size_t k, m_begin, m_end, first_candidate;
