@@ -1,8 +1,8 @@
-// KeyedRandom (core/keyed_random.hpp) and PairNoise (core/pair_noise.hpp): draws addressed by key
-// and counter, the pair symmetry, the same values for any thread count and batch, PairNoise's
-// generator against Random123's Philox4x32-10, and the distribution of the normals and uniforms
-// against their closed-form moments (tolerances 4 standard errors of each estimator) and a
-// Kolmogorov–Smirnov bound.
+// KeyedRandom (core/keyed_random.hpp), PairNoise (core/pair_noise.hpp) and NodeNoise
+// (core/node_noise.hpp): draws addressed by key and counter, the pair symmetry, the same values for
+// any thread count and batch, PairNoise's and NodeNoise's generator against Random123's
+// Philox4x32-10, and the distribution of the normals and uniforms against their closed-form
+// moments (tolerances 4 standard errors of each estimator) and a Kolmogorov–Smirnov bound.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "anisodyn/core/keyed_random.hpp"
+#include "anisodyn/core/node_noise.hpp"
 #include "anisodyn/core/pair_noise.hpp"
 
 using namespace anisodyn;
@@ -216,4 +217,81 @@ TEST(PairNoise, PairNormalsHaveTheMomentsAndDistributionOfAStandardNormal) {
   EXPECT_LT(std::abs(m.m4 - 3.0), 4.0 * std::sqrt(96.0 / n));
   EXPECT_LT(std::sqrt(n) * ks_statistic(x, [](double v) { return 0.5 * std::erfc(-v / std::sqrt(2.0)); }), 1.95);
   EXPECT_LT(std::abs(correlation(x, next)), 4.0 / std::sqrt(n));  // a new draw each step
+}
+
+TEST(NodeNoise, TheGeneratorIsRandom123sPhilox4x32) {
+  // Draw k of a node, rebuilt from r123::Philox4x32 (10 rounds) on counter (step low, step high,
+  // node, k / 4) and the key NodeNoise draws from (seed, purpose): word k mod 4, then the quantile.
+  const NodeNoise r(2026, 9);
+  const std::uint64_t k64 = KeyedRandom(2026, 9).block(0, 0, 0, 0)[0];
+  const r123::Philox4x32::key_type key = {{static_cast<std::uint32_t>(k64), static_cast<std::uint32_t>(k64 >> 32)}};
+  r123::Philox4x32 philox;
+  for (std::uint64_t step : {0ULL, 1ULL, 123456789ULL, (7ULL << 32) + 5ULL})
+    for (std::uint32_t node : {0u, 3u, 99999u, 4000000000u})
+      for (int k : {0, 1, 3, 4, 14}) {
+        const r123::Philox4x32::ctr_type ctr = {{static_cast<std::uint32_t>(step), static_cast<std::uint32_t>(step >> 32), node, static_cast<std::uint32_t>(k / 4)}};
+        const auto w = philox(ctr, key);
+        // Its own vectorised logarithm in the tails: the same value to a few ulp of the quantile.
+        const double expected = KeyedRandom::normal_quantile((static_cast<double>(w[k % 4]) + 0.5) * 0x1.0p-32);
+        EXPECT_NEAR(r(step, node, k), expected, 1e-14 * std::max(1.0, std::abs(expected))) << step << " " << node << " " << k;
+      }
+}
+
+TEST(NodeNoise, TailDrawsMatchTheLibraryQuantile) {
+  // The words that land in the tails (p < 0.02425 or p > 0.97575), down to the extremes 0 and
+  // 2³² − 1: the vectorised logarithm against std::log's quantile.
+  const NodeNoise r(1, 2);
+  std::vector<double> draws(16 * 4000);
+  r.normals(9, 0, 4000, 16, draws.data(), 4000);
+  int tails = 0;
+  for (double x : draws) {
+    const double p = 0.5 * std::erfc(-x / std::sqrt(2.0));
+    if (p > KeyedRandom::kQuantileCentral && p < 1.0 - KeyedRandom::kQuantileCentral) continue;
+    ++tails;
+    EXPECT_NEAR(x, KeyedRandom::normal_quantile(p), 1e-8 * std::abs(x));  // erfc round trip: 1e-9
+  }
+  EXPECT_GT(tails, 2000);  // 4.85% of 64000
+  for (double w : {0.0, 1.0, 12345.0, 4294967295.0}) {
+    const double p = (w + 0.5) * 0x1.0p-32;
+    const double x = KeyedRandom::normal_quantile(p);
+    EXPECT_TRUE(std::isfinite(x));
+    EXPECT_LT(std::abs(x), 6.34);
+  }
+}
+
+TEST(NodeNoise, ABatchGivesTheBitsOfSingleNodes) {
+  const NodeNoise r(5, 1);
+  for (std::size_t count : {1u, 7u, 16u, 17u, 100u}) {
+    const std::size_t stride = count + 3;
+    std::vector<double> out(15 * stride, -99.0);
+    r.normals(42, 1000, count, 15, out.data(), stride);
+    for (std::size_t m = 0; m < count; ++m)
+      for (int k = 0; k < 15; ++k) ASSERT_EQ(out[static_cast<std::size_t>(k) * stride + m], r(42, static_cast<std::uint32_t>(1000 + m), k)) << count << " " << m << " " << k;
+    for (int k = 0; k < 15; ++k) EXPECT_EQ(out[static_cast<std::size_t>(k) * stride + count], -99.0);  // nothing past count
+  }
+}
+
+TEST(NodeNoise, NodeNormalsHaveTheMomentsAndDistributionOfAStandardNormal) {
+  // Fifteen draws per node, as the LB fluid takes them: together, and draw by draw uncorrelated
+  // with the next draw of the node and with the same draw of the next node and the next step.
+  const NodeNoise r(2024, 11);
+  const std::size_t nodes = 30000;
+  std::vector<double> batch(15 * nodes), later(15 * nodes);
+  r.normals(3, 0, nodes, 15, batch.data(), nodes);
+  r.normals(4, 0, nodes, 15, later.data(), nodes);
+  const double n = static_cast<double>(batch.size());
+  const Moments m = moments(batch);
+  EXPECT_LT(std::abs(m.mean), 4.0 / std::sqrt(n));
+  EXPECT_LT(std::abs(m.var - 1.0), 4.0 * std::sqrt(2.0 / n));
+  EXPECT_LT(std::abs(m.m4 - 3.0), 4.0 * std::sqrt(96.0 / n));
+  EXPECT_LT(std::sqrt(n) * ks_statistic(batch, [](double v) { return 0.5 * std::erfc(-v / std::sqrt(2.0)); }), 1.95);
+  EXPECT_LT(std::abs(correlation(batch, later)), 4.0 / std::sqrt(n));
+  const double se = 1.0 / std::sqrt(static_cast<double>(nodes));
+  for (int k = 0; k + 1 < 15; ++k) {
+    const std::vector<double> a(batch.begin() + k * static_cast<long>(nodes), batch.begin() + (k + 1) * static_cast<long>(nodes));
+    const std::vector<double> b(batch.begin() + (k + 1) * static_cast<long>(nodes), batch.begin() + (k + 2) * static_cast<long>(nodes));
+    EXPECT_LT(std::abs(correlation(a, b)), 4.0 * se) << k;
+    std::vector<double> next_node(a.begin() + 1, a.end()), this_node(a.begin(), a.end() - 1);
+    EXPECT_LT(std::abs(correlation(this_node, next_node)), 4.0 * se) << k;
+  }
 }

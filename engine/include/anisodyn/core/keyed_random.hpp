@@ -75,15 +75,19 @@ class KeyedRandom {
   /// rational function of p − ½ for 0.02425 ≤ p ≤ 0.97575, which 95% of the draws take, and of
   /// √(−2 ln p) in the tails.
   static double normal_quantile(double p) {
+    constexpr double low = kQuantileCentral;
+    if (p >= low && p <= 1.0 - low) return normal_quantile_central(p);
+    const double x = normal_quantile_tail(std::sqrt(-2.0 * std::log(p < low ? p : 1.0 - p)));
+    return p < low ? x : -x;
+  }
+
+  /// Φ⁻¹(p) in the lower tail (p < 0.02425) from q = √(−2 ln p): a rational function of q (no
+  /// branch, so it vectorises); −Φ⁻¹ of 1 − p in the upper tail.
+  static double normal_quantile_tail(double q) {
     static constexpr double c[6] = {-7.784894002430293e-03, -3.223964580411365e-01, -2.400758277161838e+00,
                                     -2.549732539343734e+00, 4.374664141464968e+00, 2.938163982698783e+00};
     static constexpr double d[4] = {7.784695709041462e-03, 3.224671290700398e-01, 2.445134137142996e+00, 3.754408661907416e+00};
-    constexpr double low = kQuantileCentral;
-    if (p >= low && p <= 1.0 - low) return normal_quantile_central(p);
-    const double q = std::sqrt(-2.0 * std::log(p < low ? p : 1.0 - p));
-    const double x = (((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
-                     ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1.0);
-    return p < low ? x : -x;
+    return (((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) / ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1.0);
   }
 
  private:

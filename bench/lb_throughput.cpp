@@ -1,0 +1,64 @@
+// LB throughput (issue 17): million lattice-node updates per second (MLUPS) of the D3Q19 fluid
+// (lb/lb_fluid.hpp) on 64³ nodes, deterministic and fluctuating (spec 40's ρ = 6.004, ν = 0.016,
+// k_BT = 4×10⁻⁴ in lattice units), on one and two threads; and, in the same binary, the machine's
+// copy bandwidth (b[i] = a[i] over two arrays of 80 MB each, counted as 16 bytes per element, as
+// STREAM counts it). A step reads and writes 19 populations per node and reads the three force
+// components and the solid flag: 2 × 152 + 24 + 1 = 329 bytes per node update, so the bandwidth
+// limit is copy bandwidth / 329 B (docs/performance.md). Arguments: edge, threads, thermal.
+#include <benchmark/benchmark.h>
+
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "anisodyn/lb/lb_fluid.hpp"
+#include "support/timing.hpp"
+
+using namespace anisodyn;
+
+namespace {
+
+constexpr double kBytesPerNodeUpdate = 2 * 19 * 8 + 3 * 8 + 1;
+
+void set_threads(benchmark::State& bs, int threads) {
+#ifdef _OPENMP
+  omp_set_num_threads(threads);
+#endif
+  bs.counters["threads"] = threads;
+}
+
+void BM_LbStep(benchmark::State& bs) {
+  const int edge = static_cast<int>(bs.range(0));
+  set_threads(bs, static_cast<int>(bs.range(1)));
+  const bool thermal = bs.range(2) != 0;
+  lb::LbFluid fluid({edge, edge, edge}, lb::LbParameters{6.004, 0.016, 0.0, 0.0, thermal ? 4e-4 : 0.0, 1});
+  for (int s = 0; s < 3; ++s) fluid.step();
+  for (auto _ : bs) fluid.step();
+  bs.counters["MLUPS"] = benchmark::Counter(static_cast<double>(fluid.nodes()) * static_cast<double>(bs.iterations()) / 1e6, benchmark::Counter::kIsRate);
+  bs.counters["thermal"] = thermal;
+}
+
+void BM_CopyBandwidth(benchmark::State& bs) {
+  set_threads(bs, static_cast<int>(bs.range(0)));
+  const std::size_t n = std::size_t{10} << 20;  // 80 MB per array, far beyond the caches
+  std::vector<double> a(n, 1.0), b(n, 0.0);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) a[i] = 1.0, b[i] = 0.0;  // first touch by the copying thread
+  for (auto _ : bs) {
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) b[i] = a[i];
+    benchmark::DoNotOptimize(b.data());
+    benchmark::ClobberMemory();
+  }
+  const double bytes = 16.0 * static_cast<double>(n) * static_cast<double>(bs.iterations());
+  bs.counters["GB_per_s"] = benchmark::Counter(bytes / 1e9, benchmark::Counter::kIsRate);
+  bs.counters["limit_MLUPS"] = benchmark::Counter(bytes / kBytesPerNodeUpdate / 1e6, benchmark::Counter::kIsRate);
+}
+
+}  // namespace
+
+BENCHMARK(BM_LbStep)->ArgsProduct({{64}, {1, 2}, {0, 1}})->UseRealTime()->Unit(benchmark::kMillisecond)->Apply([](auto* b) { bench::min_time_or_fixed_iterations(b, 2.0); });
+BENCHMARK(BM_CopyBandwidth)->Args({1})->Args({2})->UseRealTime()->Unit(benchmark::kMillisecond)->Apply([](auto* b) { bench::min_time_or_fixed_iterations(b, 1.0); });
+BENCHMARK_MAIN();
