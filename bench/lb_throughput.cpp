@@ -4,9 +4,11 @@
 // copy bandwidth (b[i] = a[i] over two arrays of 80 MB each, counted as 16 bytes per element, as
 // STREAM counts it). A step reads and writes 19 populations per node and reads the three force
 // components and the solid flag: 2 × 152 + 24 + 1 = 329 bytes per node update, so the bandwidth
-// limit is copy bandwidth / 329 B (docs/performance.md). Arguments: edge, threads, thermal.
+// limit is copy bandwidth / 329 B (docs/performance.md). Arguments: edge, threads, thermal. And
+// the cost of coupling 1000 beads for one LB step (two MD steps).
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <vector>
 
 #ifdef _OPENMP
@@ -14,6 +16,7 @@
 #endif
 
 #include "anisodyn/lb/lb_fluid.hpp"
+#include "anisodyn/lb/point_coupling.hpp"
 #include "support/timing.hpp"
 
 using namespace anisodyn;
@@ -40,6 +43,27 @@ void BM_LbStep(benchmark::State& bs) {
   bs.counters["thermal"] = thermal;
 }
 
+// The coupling of 1000 beads (lb/point_coupling.hpp), two MD steps per LB step, on its own: the
+// per-step cost to add to the fluid's (issue 17 asks for it). Beads spread through the 64³ box.
+void BM_LbCoupling1000Beads(benchmark::State& bs) {
+  set_threads(bs, 1);
+  lb::LbFluid fluid({64, 64, 64}, lb::LbParameters{6.004, 0.016, 0.0, 0.0, 4e-4, 1});
+  const lb::PointCoupling coupling(0.56, 0.5, 4e-4, 2);
+  std::vector<Vec3> r, v, force;
+  std::vector<std::uint32_t> id;
+  for (std::uint32_t b = 0; b < 1000; ++b) {
+    r.emplace_back(std::fmod(7.3 * b, 64.0), std::fmod(3.1 * b + 0.4, 64.0), std::fmod(11.9 * b + 0.8, 64.0));
+    v.emplace_back(0.01, 0.0, -0.01);
+    id.push_back(b);
+  }
+  std::uint64_t md = 0;
+  for (auto _ : bs) {
+    coupling.couple(fluid, r, v, id, md++, force);
+    coupling.couple(fluid, r, v, id, md++, force);
+  }
+  bs.counters["beads"] = 1000;
+}
+
 void BM_CopyBandwidth(benchmark::State& bs) {
   set_threads(bs, static_cast<int>(bs.range(0)));
   const std::size_t n = std::size_t{10} << 20;  // 80 MB per array, far beyond the caches
@@ -60,5 +84,6 @@ void BM_CopyBandwidth(benchmark::State& bs) {
 }  // namespace
 
 BENCHMARK(BM_LbStep)->ArgsProduct({{64}, {1, 2}, {0, 1}})->UseRealTime()->Unit(benchmark::kMillisecond)->Apply([](auto* b) { bench::min_time_or_fixed_iterations(b, 2.0); });
+BENCHMARK(BM_LbCoupling1000Beads)->UseRealTime()->Unit(benchmark::kMillisecond)->Apply([](auto* b) { bench::min_time_or_fixed_iterations(b, 1.0); });
 BENCHMARK(BM_CopyBandwidth)->Args({1})->Args({2})->UseRealTime()->Unit(benchmark::kMillisecond)->Apply([](auto* b) { bench::min_time_or_fixed_iterations(b, 1.0); });
 BENCHMARK_MAIN();

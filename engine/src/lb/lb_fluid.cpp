@@ -168,15 +168,23 @@ std::array<double, kQ> LbFluid::modes(std::size_t node) const {
   return m;
 }
 
-double LbFluid::density(std::size_t node) const { return modes(node)[0]; }
+std::array<double, 4> LbFluid::conserved_modes(std::size_t node) const {
+  double n[kQ];
+  for (int i = 0; i < kQ; ++i) n[i] = population(i, node);
+  std::array<double, 4> m;
+  modes_of(n, m.data(), std::make_integer_sequence<int, 4>{});
+  return m;
+}
+
+double LbFluid::density(std::size_t node) const { return conserved_modes(node)[0]; }
 
 Vec3 LbFluid::momentum_density(std::size_t node) const {
-  const auto m = modes(node);
+  const auto m = conserved_modes(node);
   return Vec3(m[1], m[2], m[3]);
 }
 
 Vec3 LbFluid::velocity(std::size_t node) const {
-  const auto m = modes(node);
+  const auto m = conserved_modes(node);
   return (Vec3(m[1], m[2], m[3]) + 0.5 * force_at(node)) / m[0];
 }
 

@@ -93,6 +93,8 @@ class LbFluid {
   };
 
   Vec3 force_at(std::size_t node) const;
+  /// ρ and j of a node (modes 0–3 alone: what velocities and totals need).
+  std::array<double, 4> conserved_modes(std::size_t node) const;
   void build_links();
   void collide_row(std::size_t row, double* out, double* noise, std::size_t stride) const;
   void stream_row(std::size_t row, const double* out, std::size_t stride);
