@@ -41,8 +41,8 @@ Vec3 interpolated_velocity(const LbFluid& fluid, const Vec3& r) {
   return u;
 }
 
-PointCoupling::PointCoupling(double friction, double md_step_fraction, double kT, std::uint64_t seed)
-    : friction_(friction), h_(md_step_fraction), noise_amplitude_(0.0), noise_(seed, kLbBeadNoise) {
+PointCoupling::PointCoupling(double friction, double md_step_fraction, double kT, std::uint64_t seed, CouplingVelocity velocity)
+    : friction_(friction), h_(md_step_fraction), noise_amplitude_(0.0), noise_(seed, kLbBeadNoise), velocity_(velocity) {
   if (!(friction > 0.0) || !std::isfinite(friction)) throw InputError("PointCoupling: the bead friction must be positive, got " + std::to_string(friction));
   if (!(md_step_fraction > 0.0 && md_step_fraction <= 1.0))
     throw InputError("PointCoupling: the MD step must be a fraction (0, 1] of the LB step, got " + std::to_string(md_step_fraction));
@@ -61,7 +61,10 @@ void PointCoupling::couple(LbFluid& fluid, const std::vector<Vec3>& position, co
   for (std::size_t b = 0; b < beads; ++b) {
     stencils[b] = trilinear_stencil(fluid, position[b]);
     Vec3 u = Vec3::Zero();
-    for (std::size_t c = 0; c < 8; ++c) u += stencils[b].weight[c] * fluid.velocity(stencils[b].node[c]);
+    for (std::size_t c = 0; c < 8; ++c) {
+      const std::size_t node = stencils[b].node[c];
+      u += stencils[b].weight[c] * (velocity_ == CouplingVelocity::kWithHalfForce ? fluid.velocity(node) : fluid.momentum_density(node) / fluid.density(node));
+    }
     force[b] = -friction_ * (velocity[b] - u);
     if (noise_amplitude_ > 0.0) {
       double z[3];

@@ -30,10 +30,15 @@ Stencil trilinear_stencil(const LbFluid& fluid, const Vec3& r);
 /// u(r) = Σ w_n u_n, with u_n = (j + f/2)/ρ of each node (LbFluid::velocity).
 Vec3 interpolated_velocity(const LbFluid& fluid, const Vec3& r);
 
+/// Which fluid velocity a bead is coupled to: spec 40 §2.3's u = (j + f/2)/ρ with the force
+/// density pending for the next collision (the default), or j/ρ alone.
+enum class CouplingVelocity { kWithHalfForce, kMomentumOnly };
+
 class PointCoupling {
  public:
   /// friction ξ > 0, h = Δt_MD/Δt_LB in (0, 1], k_BT ≥ 0 (0: no noise), seed of the bead noise.
-  PointCoupling(double friction, double md_step_fraction, double kT, std::uint64_t seed);
+  PointCoupling(double friction, double md_step_fraction, double kT, std::uint64_t seed,
+                CouplingVelocity velocity = CouplingVelocity::kWithHalfForce);
 
   double friction() const { return friction_; }
 
@@ -45,6 +50,7 @@ class PointCoupling {
  private:
   double friction_, h_, noise_amplitude_;
   KeyedRandom noise_;
+  CouplingVelocity velocity_;
 };
 
 }  // namespace anisodyn::lb
