@@ -163,3 +163,18 @@ TEST(RigidSites, MomentsNeedCentredSitesOnPrincipalAxes) {
   EXPECT_THROW(point_mass_moments(std::vector<Vec3>{Vec3(1, 0, 0), Vec3(-1, 0, 0)}, 0.0), InputError);  // no mass
   EXPECT_NO_THROW(point_mass_moments(std::vector<Vec3>{Vec3(1, 0, 0), Vec3(-1, 0, 0)}, 1.0));
 }
+
+TEST(RigidSites, AngularVelocityInvertsTheInertiaInTheBodyFrame) {
+  // L = R I Rᵀ ω for a rotated asymmetric body: back to ω; a linear rotor's zero-moment axis does
+  // not turn, and a body of no moments does not turn at all.
+  const Quat q = Quat(Eigen::AngleAxisd(0.7, Vec3(1, 2, -1).normalized()));
+  const Mat3 rot = q.toRotationMatrix();
+  const Vec3 moments(1.0, 2.5, 4.0), omega(0.3, -1.2, 0.8);
+  const Vec3 L = rot * moments.asDiagonal() * rot.transpose() * omega;
+  EXPECT_LT((angular_velocity(q, L, moments) - omega).norm(), 1e-14);
+  const Vec3 rotor(2.0, 2.0, 0.0);
+  const Vec3 spin = angular_velocity(q, rot * Vec3(1.0, -3.0, 5.0), rotor);
+  EXPECT_NEAR(spin.dot(rot.col(2)), 0.0, 1e-14);
+  EXPECT_LT((spin - rot * Vec3(0.5, -1.5, 0.0)).norm(), 1e-14);
+  EXPECT_EQ(angular_velocity(q, L, Vec3::Zero()), Vec3::Zero());
+}

@@ -111,12 +111,7 @@ int ColloidCoupling::rotational_degrees(const State& state) const {
 Vec3 ColloidCoupling::angular_velocity(const State& s, std::size_t i) const {
   const Particles& p = s.particles;
   if (!p.has_angular_momenta()) return Vec3::Zero();
-  const Vec3& moments = bodies_[static_cast<std::size_t>(p.species[i])].moments;
-  if (moments.maxCoeff() == 0.0) return Vec3::Zero();
-  const Mat3 rot = p.orientation(i).toRotationMatrix();
-  Vec3 body = rot.transpose() * p.angular_momentum(i);
-  for (int k = 0; k < 3; ++k) body[k] = moments[k] > 0.0 ? body[k] / moments[k] : 0.0;
-  return rot * body;
+  return anisodyn::angular_velocity(p.orientation(i), p.angular_momentum(i), bodies_[static_cast<std::size_t>(p.species[i])].moments);
 }
 
 void ColloidCoupling::gather_liquid(const Particles& p) {

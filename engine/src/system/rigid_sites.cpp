@@ -36,6 +36,14 @@ Wrench reduce_site_forces(const SiteBody& body, const Quat& q, std::span<const V
   return w;
 }
 
+Vec3 angular_velocity(const Quat& q, const Vec3& angular_momentum, const Vec3& moments) {
+  if (moments.maxCoeff() == 0.0) return Vec3::Zero();
+  const Mat3 rot = q.toRotationMatrix();
+  Vec3 body = rot.transpose() * angular_momentum;
+  for (int k = 0; k < 3; ++k) body[k] = moments[k] > 0.0 ? body[k] / moments[k] : 0.0;
+  return rot * body;
+}
+
 Vec3 point_mass_moments(std::span<const Vec3> offsets, double site_mass) {
   if (!(site_mass > 0.0)) throw InputError("point_mass_moments: the site mass must be positive");
   Vec3 sum = Vec3::Zero();

@@ -44,6 +44,10 @@ void site_positions(const SiteBody& body, const Vec3& centre, const Quat& q, std
 Wrench reduce_site_forces(const SiteBody& body, const Quat& q, std::span<const Vec3> site_forces,
                           std::span<const Vec3> site_torques = {});
 
+/// The lab-frame angular velocity ω = R(q) I⁻¹ R(q)ᵀ L of a body with principal moments I (body
+/// axes) and lab-frame angular momentum L; axes of zero moment (a linear rotor's) do not turn.
+Vec3 angular_velocity(const Quat& q, const Vec3& angular_momentum, const Vec3& moments);
+
 /// Principal moments of inertia of equal point masses at the offsets, about the body centre and
 /// the body axes: the diagonal of Σ_s m (|d_s|² 1 − d_s d_sᵀ). The body axes must be principal
 /// axes and the centre the centre of mass (rigid-body integrators assume both): InputError when
