@@ -1,0 +1,1 @@
+anisodyn_add_script_test(spheroid_theory spheroid_theory.py)
