@@ -75,10 +75,11 @@ TEST(LbFluid, AUniformFlowIsAFixedPoint) {
 
 namespace {
 
-/// A fluid of random populations near rest (so every mode is excited), noise on, with walls.
-LbFluid noisy_fluid(bool walls) {
+/// A fluid of random populations near rest (so every mode is excited), noise on, with walls; the
+/// large one has enough nodes (4096) to be stepped on several threads.
+LbFluid noisy_fluid(bool walls, bool large = false) {
   LbParameters p{6.004, 0.016, 0.1, -0.2, 4e-4, 77};
-  LbFluid fluid({6, 5, 7}, p);
+  LbFluid fluid(large ? std::array<int, 3>{16, 16, 16} : std::array<int, 3>{6, 5, 7}, p);
   std::uint64_t state = 12345;
   auto uniform = [&state] {
     state = state * 6364136223846793005ULL + 1442695040888963407ULL;
@@ -87,8 +88,8 @@ LbFluid noisy_fluid(bool walls) {
   for (std::size_t n = 0; n < fluid.nodes(); ++n)
     fluid.set_equilibrium(n, p.density * (1.0 + 0.01 * (uniform() - 0.5)), Vec3(uniform() - 0.5, uniform() - 0.5, uniform() - 0.5) * 0.02);
   if (walls)
-    for (int z = 0; z < 7; ++z)
-      for (int x = 0; x < 6; ++x) fluid.set_solid(fluid.node(x, 0, z));
+    for (int z = 0; z < fluid.dims()[2]; ++z)
+      for (int x = 0; x < fluid.dims()[0]; ++x) fluid.set_solid(fluid.node(x, 0, z));
   return fluid;
 }
 
@@ -124,7 +125,7 @@ TEST(LbFluid, OneAndTwoThreadsGiveTheSameBits) {
 #ifdef _OPENMP
   auto run = [](int threads) {
     omp_set_num_threads(threads);
-    LbFluid fluid = noisy_fluid(true);
+    LbFluid fluid = noisy_fluid(true, true);
     for (int s = 0; s < 30; ++s) {
       fluid.add_force(fluid.node(2, 3, 4), Vec3(1e-3, 2e-3, -1e-3));
       fluid.step();

@@ -14,6 +14,9 @@ namespace {
 
 inline constexpr std::uint64_t kLbFluidNoise = 0x4C42464C554944ULL;  // "LBFLUID"
 constexpr int kNoisyModes = kQ - kFirstStressMode;                     // 15: modes 4–18
+/// Below this many nodes a step runs on one thread: the parallel region costs more than it saves,
+/// and far more when other processes share the cores (a test suite run two at a time).
+constexpr std::size_t kParallelNodes = 4096;
 
 // The transforms between populations and modes use the opposite pairs (i, i + 1), i odd: each
 // mode is even or odd under c → −c, so an even mode needs only the pair sums n_i + n_{i+1}, an odd
@@ -346,7 +349,7 @@ void LbFluid::step() {
   if (links_stale_) build_links();
   const std::size_t rows = static_cast<std::size_t>(dims_[1]) * static_cast<std::size_t>(dims_[2]);
   const std::size_t stride = (static_cast<std::size_t>(dims_[0]) + kLanes - 1) / kLanes * kLanes;
-#pragma omp parallel
+#pragma omp parallel if (nodes_ >= kParallelNodes)
   {
     std::vector<double> out(kQ * stride), noise(params_.kT > 0.0 ? kNoisyModes * stride : 0);
 #pragma omp for schedule(static)
