@@ -73,4 +73,27 @@ check(abs(G - 8.0 / (3.0 * math.pi)) < 1e-5 and abs(H - 16.0 / (9.0 * math.pi)) 
       f"disk limits: G = {G:.6f} (8/(3 pi) = {8 / (3 * math.pi):.6f}), H = {H:.6f} (16/(9 pi) = {16 / (9 * math.pi):.6f})")
 ratio = [(st.rotation_factors(p)[0] / st.rotation_factors(p)[1]) ** (1 / 3) for p in (10 / 9, 10.0)]
 check(abs(ratio[0] - 0.977) < 1e-3 and abs(ratio[1] - 0.370) < 1e-3, f"(I/J)^(1/3) = {ratio[0]:.4f} at 10/9, {ratio[1]:.4f} at 10 (printed 0.977, 0.370: within a unit of the last digit)")
+# The report's `spheroid` line (report.py) draws the same function, and the manifest check refuses a
+# factor it does not know, naming the JSON path.
+import matplotlib  # noqa: E402
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from anisodyn_run.manifest import ManifestError, validate_report  # noqa: E402
+from anisodyn_run.report import Report  # noqa: E402
+
+fig, ax = plt.subplots()
+Report.theory(None, ax, {"kind": "spheroid", "factor": "t_perp", "scale": 2.0}, None, np.array([0.25, 4.0]), "report.plots[0]")
+x, y = ax.lines[0].get_data()
+check(abs(x[0] - 0.25) < 1e-12 and abs(x[-1] - 4.0) < 1e-12 and all(abs(yi - 2.0 * st.factor("t_perp", xi)) < 1e-12 for xi, yi in zip(x, y)),
+      "the report's spheroid line is scale x factor over the plotted phi range")
+manifest = {"study": "s", "grid": {"phi": [0.5, 2.0]}, "stages": [{"name": "msd", "tool": "msd", "params": {}}],
+            "report": {"plots": [{"name": "p", "stage": "msd", "scalar": "D", "x": "phi", "theory": [{"kind": "spheroid", "factor": "E"}]}]}}
+try:
+    validate_report(manifest)
+    check(False, "an unknown spheroid factor is refused")
+except ManifestError as e:
+    check("report.plots[0].theory[0].factor" in str(e), f"an unknown spheroid factor is refused at its path: {e}")
+except TypeError as e:
+    check(False, f"validate_report's signature: {e}")
 assert not finish()

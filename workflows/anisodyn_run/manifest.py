@@ -260,7 +260,8 @@ def substitute(value, point, replica, study):
     return REFERENCE.sub(lambda mo: format_value(lookup(mo.group(1))), value)
 
 
-THEORY_KINDS = {"constant", "linear", "power", "exponential", "free_diffusion", "wertheim", "hasimoto", "periodic_rotation", "tirado_ratio", "fit_line"}
+THEORY_KINDS = {"constant", "linear", "power", "exponential", "free_diffusion", "wertheim", "hasimoto", "periodic_rotation", "tirado_ratio", "fit_line",
+                "spheroid"}
 # The keys each report item reads (report.py): anything else would be silently ignored.
 SCALAR_BLOCK_KEYS = {"stage", "names", "caption"}
 PLOT_KEYS = {"name", "stage", "select", "log", "xlabel", "ylabel", "title", "caption", "theory"}
@@ -271,8 +272,9 @@ SERIES_ENTRY_KEYS = {"stage", "scalar", "label", "select", "band", "x_scale", "y
 THEORY_KEYS = {"constant": {"value"}, "linear": {"intercept", "slope"}, "power": {"prefactor", "exponent"},
                "exponential": {"tau", "amplitude"}, "free_diffusion": {"species", "component"}, "wertheim": {"scalar"},
                "hasimoto": {"boundary", "band"}, "periodic_rotation": {"band"}, "tirado_ratio": set(),
-               "fit_line": set()}
+               "fit_line": set(), "spheroid": {"factor", "scale"}}
 THEORY_NUMBERS = {"linear": {"intercept", "slope"}}  # keys a line needs, each a number
+SPHEROID_FACTORS = ("A", "B", "t_ax", "t_perp", "r_ax", "r_perp")  # spheroid_theory.FACTORS
 
 
 def check_keys(item, allowed, path, why):
@@ -398,6 +400,10 @@ def validate_report(m):
                 if t["kind"] == "fit_line" and "table" in item:
                     raise ManifestError(f"{p}.theory[{j}].kind", "a fitted line ('fit_line') only on a scalar plot (it fits the plotted scalars)",
                                         t["kind"])
+                if t["kind"] == "spheroid" and t.get("factor") not in SPHEROID_FACTORS:
+                    raise ManifestError(f"{p}.theory[{j}].factor", "one of " + ", ".join(SPHEROID_FACTORS) + " (spec 40 §8.6)", t.get("factor"))
+                if t["kind"] == "spheroid" and "scale" in t and not is_number(t["scale"]):
+                    raise ManifestError(f"{p}.theory[{j}].scale", "a number (the factor's multiplier)", t["scale"])
                 if t["kind"] == "hasimoto" and t.get("boundary", "stick") not in ("stick", "slip"):
                     raise ManifestError(f"{p}.theory[{j}].boundary", "'stick' or 'slip'", t.get("boundary"))
                 if "band" in t and not (is_number(t["band"]) and 0 < t["band"] < 1):

@@ -478,9 +478,15 @@ class Report:
             if "band" in t:
                 ax.fill_between(line, y * (1 - t["band"]), y * (1 + t["band"]), color=line_art.get_color(), alpha=0.15, lw=0,
                                 label=f"± {100 * t['band']:g}%")
+        elif kind == "spheroid":
+            # x = phi = a/c: a factor of spec 40 §8.6 (A, B, t_ax, t_perp, r_ax, r_perp), times `scale`.
+            from .spheroid_theory import factor
+            phis = np.geomspace(lo, hi, 200) if lo > 0 else np.linspace(lo, hi, 200)
+            y = [t.get("scale", 1.0) * factor(t["factor"], float(p)) for p in phis]
+            ax.plot(phis, y, label=t.get("label", f"spheroid {t['factor']} (spec 40 §8.6)"), **style)
         else:
             raise ReportError(f"{where}.theory: unknown kind '{kind}' (constant, linear, power, exponential, free_diffusion, wertheim, "
-                              "hasimoto, periodic_rotation, tirado_ratio)")
+                              "hasimoto, periodic_rotation, tirado_ratio, spheroid)")
 
     def free_diffusivity(self, job, t, where):
         """D of the free-particle line (MSD = 2 D t), from the D0 scalars the msd stage wrote from its
