@@ -32,11 +32,7 @@ namespace {
 
 }  // namespace
 
-NodeNoise::NodeNoise(std::uint64_t seed, std::uint64_t purpose) {
-  const std::uint64_t k = KeyedRandom(seed, purpose).block(0, 0, 0, 0)[0];
-  key_[0] = static_cast<std::uint32_t>(k);
-  key_[1] = static_cast<std::uint32_t>(k >> 32);
-}
+NodeNoise::NodeNoise(std::uint64_t seed, std::uint64_t purpose) { philox4x32_key(seed, purpose, key_); }
 
 [[gnu::noinline]] void NodeNoise::normals(std::uint64_t step, std::uint32_t first, std::size_t count, int per_node, double* out, std::size_t stride) const {
   const auto step_lo = static_cast<std::uint32_t>(step), step_hi = static_cast<std::uint32_t>(step >> 32);

@@ -8,11 +8,7 @@
 
 namespace anisodyn {
 
-PairNoise::PairNoise(std::uint64_t seed, std::uint64_t purpose) {
-  const std::uint64_t k = KeyedRandom(seed, purpose).block(0, 0, 0, 0)[0];
-  key_[0] = static_cast<std::uint32_t>(k);
-  key_[1] = static_cast<std::uint32_t>(k >> 32);
-}
+PairNoise::PairNoise(std::uint64_t seed, std::uint64_t purpose) { philox4x32_key(seed, purpose, key_); }
 
 void PairNoise::normals(std::uint64_t step, const std::uint32_t* a, const std::uint32_t* b, std::size_t n, double* out) const {
   const auto step_lo = static_cast<std::uint32_t>(step), step_hi = static_cast<std::uint32_t>(step >> 32);

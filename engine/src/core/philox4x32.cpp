@@ -1,5 +1,7 @@
 #include "anisodyn/core/philox4x32.hpp"
 
+#include "anisodyn/core/keyed_random.hpp"
+
 #if defined(__AVX512F__)
 // GCC 12's AVX-512 headers build some intrinsics on an "undefined" register, which -Wuninitialized
 // reports once they are inlined (GCC bug 105593): a false alarm here.
@@ -61,6 +63,12 @@ void philox4x32_lanes(std::uint32_t* c0, std::uint32_t* c1, std::uint32_t* c2, s
     c3[l] = x3;
   }
 #endif
+}
+
+void philox4x32_key(std::uint64_t seed, std::uint64_t purpose, std::uint32_t key[2]) {
+  const std::uint64_t k = KeyedRandom(seed, purpose).block(0, 0, 0, 0)[0];
+  key[0] = static_cast<std::uint32_t>(k);
+  key[1] = static_cast<std::uint32_t>(k >> 32);
 }
 
 }  // namespace anisodyn

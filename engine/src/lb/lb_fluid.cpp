@@ -184,9 +184,10 @@ Vec3 LbFluid::momentum_density(std::size_t node) const {
   return Vec3(m[1], m[2], m[3]);
 }
 
-Vec3 LbFluid::velocity(std::size_t node) const {
+Vec3 LbFluid::velocity(std::size_t node, bool with_half_force) const {
   const auto m = conserved_modes(node);
-  return (Vec3(m[1], m[2], m[3]) + 0.5 * force_at(node)) / m[0];
+  const Vec3 j(m[1], m[2], m[3]);
+  return (with_half_force ? Vec3(j + 0.5 * force_at(node)) : j) / m[0];
 }
 
 double LbFluid::total_mass() const {
@@ -349,7 +350,10 @@ void LbFluid::step() {
   const std::size_t stride = (static_cast<std::size_t>(dims_[0]) + kLanes - 1) / kLanes * kLanes;
 #pragma omp parallel if (nodes_ >= kParallelNodes)
   {
-    std::vector<double> out(kQ * stride), noise(params_.kT > 0.0 ? kNoisyModes * stride : 0);
+    // Each thread's row buffers, kept from step to step.
+    static thread_local std::vector<double> out, noise;
+    out.resize(kQ * stride);
+    noise.resize(params_.kT > 0.0 ? kNoisyModes * stride : 0);
 #pragma omp for schedule(static)
     for (std::size_t row = 0; row < rows; ++row) {
       if (row + 1 < rows) prefetch_destinations(row + 1);

@@ -34,12 +34,13 @@ Stencil trilinear_stencil(const LbFluid& fluid, const Vec3& r) {
   return st;
 }
 
-Vec3 interpolated_velocity(const LbFluid& fluid, const Vec3& r) {
-  const Stencil st = trilinear_stencil(fluid, r);
+Vec3 interpolated_velocity(const LbFluid& fluid, const Stencil& stencil, CouplingVelocity velocity) {
   Vec3 u = Vec3::Zero();
-  for (std::size_t c = 0; c < 8; ++c) u += st.weight[c] * fluid.velocity(st.node[c]);
+  for (std::size_t c = 0; c < 8; ++c) u += stencil.weight[c] * fluid.velocity(stencil.node[c], velocity == CouplingVelocity::kWithHalfForce);
   return u;
 }
+
+Vec3 interpolated_velocity(const LbFluid& fluid, const Vec3& r) { return interpolated_velocity(fluid, trilinear_stencil(fluid, r)); }
 
 PointCoupling::PointCoupling(double friction, double md_step_fraction, double kT, std::uint64_t seed, CouplingVelocity velocity)
     : friction_(friction), h_(md_step_fraction), noise_amplitude_(0.0), noise_(seed, kLbBeadNoise), velocity_(velocity) {
@@ -60,12 +61,7 @@ void PointCoupling::couple(LbFluid& fluid, const std::vector<Vec3>& position, co
   std::vector<Stencil> stencils(beads);
   for (std::size_t b = 0; b < beads; ++b) {
     stencils[b] = trilinear_stencil(fluid, position[b]);
-    Vec3 u = Vec3::Zero();
-    for (std::size_t c = 0; c < 8; ++c) {
-      const std::size_t node = stencils[b].node[c];
-      u += stencils[b].weight[c] * (velocity_ == CouplingVelocity::kWithHalfForce ? fluid.velocity(node) : fluid.momentum_density(node) / fluid.density(node));
-    }
-    force[b] = -friction_ * (velocity[b] - u);
+    force[b] = -friction_ * (velocity[b] - interpolated_velocity(fluid, stencils[b], velocity_));
     if (noise_amplitude_ > 0.0) {
       double z[3];
       noise_.normals(md_step, id[b], 0, z, 3);

@@ -27,7 +27,6 @@ Vec3 nearest_surface_point(const Vec3& s, const Vec3& r) {
   };
   // F decreases on (−min s², ∞); F(max s · |r|) ≤ 0.
   const double lowest = -s2.minCoeff();
-  double lo = lowest, hi = s.maxCoeff() * r.norm();
   const double floor = lowest + std::abs(lowest) * 1e-15;
   if (!(f(floor) > 0.0)) {
     // r has no component along the shortest axis and lies inside the ellipse across it: the
@@ -43,7 +42,7 @@ Vec3 nearest_surface_point(const Vec3& s, const Vec3& r) {
     p[k] = (r[k] < 0.0 ? -1.0 : 1.0) * s[k] * std::sqrt(std::max(rest, 0.0));
     return p;
   }
-  lo = floor;
+  double lo = floor, hi = s.maxCoeff() * r.norm();
   for (int iteration = 0; iteration < 200 && hi - lo > 1e-15 * std::max(1.0, std::abs(hi)); ++iteration) {
     const double mid = 0.5 * (lo + hi);
     if (f(mid) > 0.0) lo = mid;

@@ -14,4 +14,8 @@ inline constexpr std::size_t kPhiloxLanes = 16;
 /// each result replace the counter.
 void philox4x32_lanes(std::uint32_t* c0, std::uint32_t* c1, std::uint32_t* c2, std::uint32_t* c3, const std::uint32_t key[2]);
 
+/// The two key words of a noise with its own (seed, purpose): a KeyedRandom draw, so that noises of
+/// different purposes are independent.
+void philox4x32_key(std::uint64_t seed, std::uint64_t purpose, std::uint32_t key[2]);
+
 }  // namespace anisodyn

@@ -74,8 +74,9 @@ class LbFluid {
   double density(std::size_t node) const;
   /// j = Σ_i c_i n_i, without the half force.
   Vec3 momentum_density(std::size_t node) const;
-  /// The fluid velocity u = (j + f/2)/ρ with the force density pending for the next step.
-  Vec3 velocity(std::size_t node) const;
+  /// The fluid velocity u = (j + f/2)/ρ with the force density pending for the next step, or
+  /// j/ρ alone (with_half_force false).
+  Vec3 velocity(std::size_t node, bool with_half_force = true) const;
   /// Σ ρ and Σ j over the fluid nodes.
   double total_mass() const;
   Vec3 total_momentum() const;

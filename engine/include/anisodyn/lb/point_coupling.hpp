@@ -27,12 +27,14 @@ struct Stencil {
 /// The stencil of r (lattice units, any image: wrapped into the periodic box).
 Stencil trilinear_stencil(const LbFluid& fluid, const Vec3& r);
 
-/// u(r) = Σ w_n u_n, with u_n = (j + f/2)/ρ of each node (LbFluid::velocity).
-Vec3 interpolated_velocity(const LbFluid& fluid, const Vec3& r);
-
 /// Which fluid velocity a bead is coupled to: spec 40 §2.3's u = (j + f/2)/ρ with the force
 /// density pending for the next collision (the default), or j/ρ alone.
 enum class CouplingVelocity { kWithHalfForce, kMomentumOnly };
+
+/// Σ w_n u_n over a stencil's nodes (u_n: LbFluid::velocity, with or without the half force).
+Vec3 interpolated_velocity(const LbFluid& fluid, const Stencil& stencil, CouplingVelocity velocity = CouplingVelocity::kWithHalfForce);
+/// u(r) over the stencil of r.
+Vec3 interpolated_velocity(const LbFluid& fluid, const Vec3& r);
 
 class PointCoupling {
  public:
