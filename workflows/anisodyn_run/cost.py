@@ -10,6 +10,9 @@ rates_when entry whose key path is in the job's parameters, else R). A factor is
                                    "key": COUNT}: the sum of COUNT over the entries of LIST, plus
                                    the particles of its own first input, plus with "fill" a
                                    density × box volume, filled())
+  "box_volume"                     the box volume of the job's system: the box.edges of the job
+                                   itself or of the first job upstream that has them (an LB
+                                   engine's lattice nodes at a node spacing of 1);
   {"param": "key.path", "default": X}   a number from the job's parameters;
   {"rule": NAME, ...}              a named count (RULES below) for run lengths no single key gives;
   a number                         a constant.
@@ -85,13 +88,13 @@ def check_model(c, engine):
     if not isinstance(c.get("amount"), list) or not c["amount"]:
         raise ValueError("a cost model's 'amount' is a non-empty list of factors")
     for f in c["amount"]:
-        if f == "particles" or _number(f):
+        if f in ("particles", "box_volume") or _number(f):
             continue
         if isinstance(f, dict) and isinstance(f.get("param"), str) and _number(f.get("default", 0)):
             continue
         if isinstance(f, dict) and f.get("rule") in RULES and all(_number(f.get(k)) for k in RULES[f["rule"]][1]):
             continue
-        raise ValueError(f"unknown cost factor {f!r}: \"particles\", a number, {{\"param\": \"key.path\", \"default\": x}} "
+        raise ValueError(f"unknown cost factor {f!r}: \"particles\", \"box_volume\", a number, {{\"param\": \"key.path\", \"default\": x}} "
                          f"or {{\"rule\": one of {', '.join(sorted(RULES))}, with its keys}}")
     if not _number(c.get("rate")) or c["rate"] <= 0:
         raise ValueError("a cost model's 'rate' is a positive number of work units per second of one core")
@@ -135,9 +138,23 @@ def particles(job, jobs):
     return 0
 
 
+def box_volume(job, jobs):
+    """Box volume of a job's system: its own box.edges, else those of the first job upstream with them."""
+    found, edges = _lookup(job.params, "box.edges")
+    if found and isinstance(edges, list) and edges and all(_number(e) for e in edges):
+        return math.prod(edges)
+    for i in job.inputs:
+        v = box_volume(jobs[i], jobs)
+        if v:
+            return v
+    return 0
+
+
 def factor(f, job, jobs):
     if f == "particles":
         return particles(job, jobs)
+    if f == "box_volume":
+        return box_volume(job, jobs)
     if _number(f):
         return f
     if "param" in f:

@@ -5,6 +5,7 @@
 #include "anisodyn/core/error.hpp"
 #include "anisodyn/core/keyed_random.hpp"
 #include "anisodyn/core/ordered_sum.hpp"
+#include "anisodyn/run/checkpoint_json.hpp"
 
 namespace anisodyn {
 
@@ -19,18 +20,6 @@ std::uint64_t replica_seed(std::uint64_t seed, std::uint64_t replica) { return K
 
 std::vector<double> six(const Mat3& m) { return {m(0, 0), m(1, 1), m(2, 2), m(0, 1), m(0, 2), m(1, 2)}; }
 
-nlohmann::json vec_json(const Vec3& v) { return std::vector<double>{v.x(), v.y(), v.z()}; }
-Vec3 vec_from(const nlohmann::json& j) {
-  const auto v = j.get<std::vector<double>>();
-  return Vec3(v.at(0), v.at(1), v.at(2));
-}
-
-nlohmann::json mat_json(const Mat3& m) { return std::vector<double>(m.data(), m.data() + 9); }
-Mat3 mat_from(const nlohmann::json& j) {
-  const auto v = j.get<std::vector<double>>();
-  return Eigen::Map<const Mat3>(v.data());
-}
-
 }  // namespace
 
 nlohmann::json DpdRowSums::to_json() const {
@@ -39,10 +28,10 @@ nlohmann::json DpdRowSums::to_json() const {
           {"potential_energy", potential_energy},
           {"colloid_translational", colloid_translational},
           {"total_energy", total_energy},
-          {"wall_force", {vec_json(wall_force[0]), vec_json(wall_force[1])}},
+          {"wall_force", {run::vec3_json(wall_force[0]), run::vec3_json(wall_force[1])}},
           {"colloid_rotational", colloid_rotational},
-          {"kinetic", mat_json(kinetic)},
-          {"virial", {mat_json(virial[0]), mat_json(virial[1]), mat_json(virial[2])}}};
+          {"kinetic", run::mat3_json(kinetic)},
+          {"virial", {run::mat3_json(virial[0]), run::mat3_json(virial[1]), run::mat3_json(virial[2])}}};
 }
 
 DpdRowSums DpdRowSums::from_json(const nlohmann::json& j) {
@@ -52,10 +41,10 @@ DpdRowSums DpdRowSums::from_json(const nlohmann::json& j) {
   r.potential_energy = j.at("potential_energy").get<double>();
   r.colloid_translational = j.at("colloid_translational").get<double>();
   r.total_energy = j.at("total_energy").get<double>();
-  for (std::size_t w = 0; w < 2; ++w) r.wall_force[w] = vec_from(j.at("wall_force")[w]);
+  for (std::size_t w = 0; w < 2; ++w) r.wall_force[w] = run::vec3_from_json(j.at("wall_force")[w]);
   r.colloid_rotational = j.at("colloid_rotational").get<double>();
-  r.kinetic = mat_from(j.at("kinetic"));
-  for (int k = 0; k < 3; ++k) r.virial[static_cast<std::size_t>(k)] = mat_from(j.at("virial")[static_cast<std::size_t>(k)]);
+  r.kinetic = run::mat3_from_json(j.at("kinetic"));
+  for (int k = 0; k < 3; ++k) r.virial[static_cast<std::size_t>(k)] = run::mat3_from_json(j.at("virial")[static_cast<std::size_t>(k)]);
   return r;
 }
 
@@ -414,17 +403,10 @@ void DpdRunner::run(io::H5mdWriter& out, std::int64_t checkpoint_every, const st
 }
 
 nlohmann::json DpdRunner::checkpoint_state() const {
-  const BodyForces& f = integrator_->forces();
-  auto flat = [](const std::vector<Vec3>& vs) {
-    std::vector<double> out;
-    out.reserve(3 * vs.size());
-    for (const Vec3& v : vs) out.insert(out.end(), {v.x(), v.y(), v.z()});
-    return out;
-  };
   return {{"production", production_.checkpoint_state()},
           {"row", row_.to_json()},
           {"profiles", profiles_ ? profiles_->to_json() : nlohmann::json()},
-          {"forces", {{"force", flat(f.force)}, {"torque", flat(f.torque)}, {"energy", f.energy}, {"virial", mat_json(f.virial)}}},
+          {"forces", run::body_forces_json(integrator_->forces())},
           // The pair list's order decides the order of the force sums: rebuilt from these, it is the same.
           {"list_positions", pairs_->list_positions()},
           {"summary", summary_},
@@ -436,18 +418,7 @@ void DpdRunner::restore(const nlohmann::json& j) {
   production_.restore(j.at("production"));
   row_ = DpdRowSums::from_json(j.at("row"));
   if (profiles_) profiles_->restore(j.at("profiles"));
-  const auto& f = j.at("forces");
-  const auto force = f.at("force").get<std::vector<double>>();
-  BodyForces forces;
-  forces.reset(force.size() / 3);
-  const auto torque = f.at("torque").get<std::vector<double>>();
-  for (std::size_t i = 0; i < forces.force.size(); ++i) {
-    forces.force[i] = Vec3(force[3 * i], force[3 * i + 1], force[3 * i + 2]);
-    forces.torque[i] = Vec3(torque[3 * i], torque[3 * i + 1], torque[3 * i + 2]);
-  }
-  forces.energy = f.at("energy").get<double>();
-  forces.virial = mat_from(f.at("virial"));
-  integrator_->restore_forces(std::move(forces));
+  integrator_->restore_forces(run::body_forces_from_json(j.at("forces")));
   const auto list_positions = j.at("list_positions").get<std::vector<double>>();
   if (!list_positions.empty()) pairs_->restore_list(state_.box, list_positions);  // none: colloids alone
   summary_ = j.at("summary");

@@ -10,13 +10,14 @@ namespace anisodyn::io {
 // =====================================================================================================
 
 void write_checkpoint_file(const std::string& path, const H5mdHeader& header, const State& state,
-                           const nlohmann::json& engine_state) {
+                           const nlohmann::json& engine_state, const CheckpointArrays& arrays) {
   H5mdHeader h = header;
   if (h.species.empty()) h.species = state.species;
   h.frames_per_chunk = 1;
   H5mdWriter writer(path, h);
   writer.append_frame(state);
   writer.write_checkpoint(engine_state);
+  for (const auto& [name, values] : arrays) writer.write_checkpoint_array(name, values);
   writer.commit();
 }
 

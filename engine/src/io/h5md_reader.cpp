@@ -367,4 +367,15 @@ std::optional<nlohmann::json> H5mdReader::checkpoint() const {
   return impl_->read_json(hpath);
 }
 
+std::vector<double> H5mdReader::checkpoint_array(const std::string& name) const {
+  QuietHdf5 quiet;
+  const std::string hpath = "/anisodyn/checkpoint/arrays/" + name;
+  Handle ds = impl_->dataset(hpath);
+  const auto dims = impl_->dims(hpath);
+  if (dims.size() != 1) impl_->bad(hpath, "expected a one-dimensional array");
+  std::vector<double> out(dims[0]);
+  if (!out.empty()) impl_->read_all(ds.get(), H5T_NATIVE_DOUBLE, out.data(), hpath);
+  return out;
+}
+
 }  // namespace anisodyn::io

@@ -408,6 +408,21 @@ void H5mdWriter::write_checkpoint(const nlohmann::json& engine_state) {
   m.w.check_rc(H5Fflush(m.file.get(), H5F_SCOPE_GLOBAL), "flush");
 }
 
+void H5mdWriter::write_checkpoint_array(const std::string& name, const std::vector<double>& values) {
+  QuietHdf5 quiet;
+  Impl& m = *impl_;
+  m.require_open();
+  if (!m.anisodyn_group.valid()) m.anisodyn_group = m.w.group(m.file.get(), "anisodyn");
+  if (!m.checkpoint_group.valid()) m.checkpoint_group = m.w.group(m.anisodyn_group.get(), "checkpoint");
+  const hid_t parent = m.checkpoint_group.get();
+  Handle arrays = H5Lexists(parent, "arrays", H5P_DEFAULT) > 0
+                      ? Handle(m.w.check(H5Gopen2(parent, "arrays", H5P_DEFAULT), "open group arrays"), H5Gclose)
+                      : m.w.group(parent, "arrays");
+  if (H5Lexists(arrays.get(), name.c_str(), H5P_DEFAULT) > 0)
+    m.w.check_rc(H5Ldelete(arrays.get(), name.c_str(), H5P_DEFAULT), "replace checkpoint array " + name);
+  m.w.double_dataset(arrays.get(), name, values);
+}
+
 void H5mdWriter::commit() {
   QuietHdf5 quiet;
   Impl& m = *impl_;

@@ -219,6 +219,22 @@ void LbFluid::restore(const std::vector<double>& populations, std::uint64_t step
   steps_ = steps;
 }
 
+std::vector<double> LbFluid::pending_forces() const {
+  std::vector<double> out;
+  out.reserve(3 * nodes_);
+  for (const std::vector<double>* component : {&fx_, &fy_, &fz_}) out.insert(out.end(), component->begin(), component->begin() + static_cast<std::ptrdiff_t>(nodes_));
+  return out;
+}
+
+void LbFluid::restore_pending_forces(const std::vector<double>& forces) {
+  if (forces.size() != 3 * nodes_)
+    throw InputError("LbFluid::restore_pending_forces: " + std::to_string(forces.size()) + " values for a lattice of " + std::to_string(nodes_) + " nodes");
+  std::size_t at = 0;
+  for (std::vector<double>* component : {&fx_, &fy_, &fz_})
+    for (std::size_t n = 0; n < nodes_; ++n) (*component)[n] = forces[at++];
+  forces_pending_ = std::any_of(forces.begin(), forces.end(), [](double f) { return f != 0.0; });
+}
+
 void LbFluid::build_links() {
   links_.clear();
   for (int z = 0; z < dims_[2]; ++z)

@@ -33,9 +33,13 @@ io::H5mdWriter& RunFiles::open(const io::H5mdHeader& header, std::int64_t last_s
   return *out_;
 }
 
-void RunFiles::checkpoint(const State& state, const nlohmann::json& engine_state) {
+std::vector<double> RunFiles::checkpoint_array(const std::string& name) const {
+  return io::H5mdReader(checkpoint_path_).checkpoint_array(name);
+}
+
+void RunFiles::checkpoint(const State& state, const nlohmann::json& engine_state, const io::CheckpointArrays& arrays) {
   out_->write_checkpoint(engine_state);  // flushes the streamed output first
-  io::write_checkpoint_file(checkpoint_path_, *header_, state, engine_state);
+  io::write_checkpoint_file(checkpoint_path_, *header_, state, engine_state, arrays);
 }
 
 void RunFiles::run(const std::function<void(io::H5mdWriter&)>& body) {

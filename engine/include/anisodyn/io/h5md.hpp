@@ -90,6 +90,9 @@ class H5mdWriter {
 
   /// /anisodyn/checkpoint/engine_state as JSON text (replaced on every call); flushes the file.
   void write_checkpoint(const nlohmann::json& engine_state);
+  /// /anisodyn/checkpoint/arrays/<name>: a float64 array of an engine's restart state too large for
+  /// JSON text (an LB fluid's populations); replaces an array of that name.
+  void write_checkpoint_array(const std::string& name, const std::vector<double>& values);
 
   /// Flushes, closes and atomically renames <path>.partial to <path>. No calls are allowed after.
   void commit();
@@ -175,6 +178,8 @@ class H5mdReader {
   nlohmann::json provenance() const;
   /// /anisodyn/checkpoint/engine_state, if present.
   std::optional<nlohmann::json> checkpoint() const;
+  /// /anisodyn/checkpoint/arrays/<name> (write_checkpoint_array); missing → InputError.
+  std::vector<double> checkpoint_array(const std::string& name) const;
 
  private:
   /// Velocities and angular momenta of `frame` into p, for the elements the file has.
@@ -183,10 +188,13 @@ class H5mdReader {
   std::unique_ptr<Impl> impl_;
 };
 
-/// A complete one-frame H5MD file holding `state`, plus /anisodyn/checkpoint/engine_state, written
-/// atomically (a crash while writing leaves the previous checkpoint file intact).
+/// Named float64 arrays of an engine's restart state (H5mdWriter::write_checkpoint_array).
+using CheckpointArrays = std::vector<std::pair<std::string, std::vector<double>>>;
+
+/// A complete one-frame H5MD file holding `state`, plus /anisodyn/checkpoint/engine_state and the
+/// arrays, written atomically (a crash while writing leaves the previous checkpoint file intact).
 void write_checkpoint_file(const std::string& path, const H5mdHeader& header, const State& state,
-                           const nlohmann::json& engine_state);
+                           const nlohmann::json& engine_state, const CheckpointArrays& arrays = {});
 /// The state (last frame) and engine state of a checkpoint file. No checkpoint group → InputError.
 std::pair<State, nlohmann::json> read_checkpoint_file(const std::string& path);
 

@@ -85,6 +85,10 @@ class LbFluid {
   /// [i · nodes + n]), and the step (the noise's counter).
   std::vector<double> populations() const;
   void restore(const std::vector<double>& populations, std::uint64_t steps);
+  /// The force densities added for the next step (add_force), x of every node, then y, then z;
+  /// with the populations, what a checkpoint between two LB steps needs.
+  std::vector<double> pending_forces() const;
+  void restore_pending_forces(const std::vector<double>& forces);
 
  private:
   struct BoundaryLink {

@@ -1,0 +1,1 @@
+anisodyn_add_script_test(lb_engine lb_engine.py)
