@@ -78,3 +78,126 @@ def resistance_manifest(smoke):
 
 for smoke in (True, False):
     write("lb_bead_resistance_sweep" + ("-smoke" if smoke else ""), resistance_manifest(smoke))
+
+
+# --- D3, D4: diffusion of free raspberries (spec 40 §7.1, §8) -------------------------------------
+L_ELLIPSOID = [27, 32, 38, 48, 55, 64, 76, 94]      # spec 40 §7.1
+RADII = [2.25, 2.75, 3.25, 3.75, 4.25, 4.75, 5.25, 5.75]
+RECORDINGS, RUNS = 200_000, 4                       # per box, in 4 runs (spec 40 §7.1 Decision)
+
+
+def diffusion_stages(shape, seed, xi, steps, fit, window_from):
+    return [
+        {"name": "config", "tool": "config", "replicate": False, "params": {
+            "seed": seed, "placement": "lattice", "species": [{"name": "raspberry", "shape": shape}],
+            "composition": [{"species": "raspberry", "count": 1}], "box": {"edges": ["${grid.L}"] * 3}}},
+        {"name": "lb", "tool": "lb", "inputs": ["config"], "params": {
+            "seed": seed + 1, "time_step": DT, "steps": steps, "observe_every": 10 * ROW, "frames": {"every_steps": ROW},
+            "raspberries": {"xi_bead": xi}}},
+        {"name": "diffusion", "tool": "lb-diffusion", "inputs": ["lb"], "params": {
+            **({"fit": fit} if fit else {}), **({"window": {"from": window_from}} if window_from else {})}},
+    ]
+
+
+def hasimoto_plot(name, select, title):
+    return {"name": name, "stage": "diffusion", "scalar": "D_t", "x": "L", "x_power": -1, "select": select,
+            "theory": [{"kind": "fit_line", "label": "D_t = D_0 + c_1 / L (intercept: D_0)"}],
+            "xlabel": "1/L (1/sigma)", "ylabel": "D_t (sigma^2/t0, simulated fluid)", "title": title}
+
+
+def sphere_sweep_manifest(smoke):
+    if smoke:
+        grid = {"d": [4.5], "xi_bead": [50], "L": [16, 20, 24]}
+        replicas, steps, fit, window_from = 2, 20_000, {"t_min": 4, "t_max": 40}, None
+    else:
+        pairs = [(2 * r, round(l * r / 4.25)) for r in RADII for l in L_ELLIPSOID]
+        grid = {"d": [p[0] for p in pairs], "L": [p[1] for p in pairs], "xi_bead": [50, 200, 1000]}
+        replicas, steps, fit, window_from = RUNS, RECORDINGS // RUNS * ROW, None, None
+    m = {
+        "study": "lb_sphere_radius_sweep" + ("-smoke" if smoke else ""),
+        "description": ("D3 smoke: " if smoke else "Study D3 (spec 60 D3, spec 40 §7.1, §8.1-8.2; Ustach & Faller): ")
+        + "one free raspberry sphere in a periodic cubic box of the fluctuating D3Q19 fluid (rho = 6.004, nu = 0.8, kT = 1; xi_bead nominal, "
+          "scaled by s = 0.8/5.6757), 1000 MD steps of fluid warm-up, recordings every 200 MD steps (2 t0); lab-frame D_t (MSD slope / 6) "
+          "and its Hasimoto 1/L extrapolation (the fit line's intercept is D_0), D_r of the reference bead (4 tau estimator), three-axis and "
+          "body-axis D_r (anisodyn-lb-diffusion). "
+        + (f"R = 2.25, xi_bead = 50, boxes 16, 20, 24, {replicas} runs of {steps} MD steps each; the translational fit over lags 4 ... 40 t0 "
+           "(spec 40's 0.5 ... 2 L^2/nu is beyond the smoke's runs)." if smoke else
+           f"Boxes L = round(L_ell R/4.25) for spec 40 §7.1's eight L_ell (Decision); {RECORDINGS} recordings per box in {RUNS} runs; the "
+           "translational fit over spec 40 §8.1's window 0.5 ... 2 L^2/nu."),
+        "replicas": replicas,
+        "grid": grid,
+        "stages": diffusion_stages({"type": "sphere", "diameter": "${grid.d}"}, 81, "${grid.xi_bead}", steps, fit, window_from),
+        "report": {
+            "title": "D3" + (" smoke" if smoke else "") + ": diffusion of raspberry spheres",
+            "scalars": [{"stage": "diffusion", "names": ["D_t", "D_t_hasimoto", "D_r", "D_r_three_axis", "D_r_body_*", "xi_t_over_6pi_eta_R",
+                                                         "xi_r_over_8pi_eta_R3"],
+                         "caption": "per box: D_t and its Hasimoto-corrected value D_t + 2.837 kT/(6 pi eta L), rotational D_r (run's units)"}],
+            "plots": ([hasimoto_plot("D_t_hasimoto_fit", {}, "Finite-size extrapolation of D_t (R = 2.25, xi_bead = 50)")] if smoke else
+                      [hasimoto_plot(f"D_t_d{d}_xi{xi}", {"d": d, "xi_bead": xi}, f"Finite-size extrapolation of D_t (R = {d / 2}, xi_bead = {xi})")
+                       for d in sorted(set(grid["d"])) for xi in grid["xi_bead"]])
+            + [{"name": "D_r_body_axes", "x": "L",
+                "series": [{"stage": "diffusion", "scalar": s, "label": s, **({} if smoke else {"select": {"d": 8.5, "xi_bead": 1000}})}
+                           for s in ("D_r", "D_r_three_axis", "D_r_body_x", "D_r_body_y", "D_r_body_z")],
+                "xlabel": "L (sigma)", "ylabel": "D_r (1/t0)", "title": "Rotational diffusion: lab estimators and the body axes"
+                + ("" if smoke else " (R = 4.25, xi_bead = 1000)")}],
+        },
+    }
+    if not smoke:
+        m["zip"] = [["d", "L"]]
+    return m
+
+
+def spheroid(phi):
+    """Semi-axes (a, b, b) of the constant-volume spheroid of aspect phi = a/b (spec 40 §5.3)."""
+    return [4.25 * phi ** (2 / 3), 4.25 * phi ** (-1 / 3), 4.25 * phi ** (-1 / 3)]
+
+
+PHIS = [(1, 10), (1, 5), (1, 4), (1, 3), (1, 2), (2, 3), (4, 5), (9, 10), (10, 9), (5, 4), (3, 2), (2, 1), (3, 1), (4, 1), (5, 1), (10, 1)]
+
+
+def ellipsoid_manifest(smoke):
+    if smoke:
+        phis, boxes, replicas, steps, fit = [(2, 1)], [24], 2, 20_000, {"t_min": 4, "t_max": 40}
+    else:
+        phis, boxes, replicas, steps, fit = PHIS, L_ELLIPSOID, RUNS, RECORDINGS // RUNS * ROW, None
+    pairs = [(n / d, l) for n, d in phis for l in boxes if l >= 2 * spheroid(n / d)[0] + 4]  # drop L < 2a + 4 (spec 60 D4)
+    dropped = [(f"{n}/{d}", l) for n, d in phis for l in boxes if l < 2 * spheroid(n / d)[0] + 4]
+    # phi itself is no parameter of any stage: the plots draw against it as (a/4.25)^(3/2).
+    grid = {"a": [spheroid(p[0])[0] for p in pairs], "b": [spheroid(p[0])[1] for p in pairs], "L": [p[1] for p in pairs]}
+    shape = {"type": "ellipsoid", "semi_axes": ["${grid.a}", "${grid.b}", "${grid.b}"]}
+    ratio_plots = [{"name": f"{kind}_anisotropy", "stage": "diffusion", "scalar": f"D_{kind}_axial_over_perp",
+                    "x": "a", "x_scale": 1 / 4.25, "x_power": 1.5,
+                    "theory": [{"kind": "spheroid", "factor": f"{kind}_ratio",
+                                "label": ("Happel-Brenner" if kind == "t" else "Perrin") + f" {kind}_perp/{kind}_ax"}],
+                    "xlabel": "phi = a/b", "ylabel": f"D_{kind},ax / D_{kind},perp (body frame)",
+                    "title": ("Translational" if kind == "t" else "Rotational") + " anisotropy in the body frame"}
+                   for kind in ("t", "r")]
+    if not smoke:
+        for p in ratio_plots:
+            p["select"] = {"L": 94}
+    return {
+        "study": "lb_ellipsoid_sweep" + ("-smoke" if smoke else ""),
+        "description": ("D4 smoke: " if smoke else "Study D4 (spec 60 D4, spec 40 §5.3, §8.3-8.6; Ustach & Faller): ")
+        + "one free constant-volume raspberry spheroid (a b^2 = 4.25^3, symmetry axis along body x) in the fluctuating fluid, xi_bead = 1000 "
+          "nominal; body-frame D_t,i and D_r,i by quaternion projection (anisodyn-lb-diffusion), their anisotropies D_ax/D_perp against "
+          "Happel-Brenner and Perrin (spec 40 §8.6; no radius calibration needed). "
+        + (f"phi = 2 (a = 6.746, b = 3.373), box 24, {replicas} runs of {steps} MD steps; the translational fit over lags 4 ... 40 t0."
+           if smoke else
+           f"The 16 aspect ratios of spec 40 §5.3, boxes of spec 40 §7.1 without those below 2a + 4 (dropped: {dropped}); {RECORDINGS} "
+           f"recordings per box in {RUNS} runs. The factors A, B, E-L through the D3 calibration lines are not in this manifest yet."),
+        "replicas": replicas,
+        "grid": grid,
+        "zip": [["a", "b", "L"]],
+        "stages": diffusion_stages(shape, 91, 1000, steps, fit, None),
+        "report": {
+            "title": "D4" + (" smoke" if smoke else "") + ": diffusion of raspberry spheroids",
+            "scalars": [{"stage": "diffusion", "names": ["D_t_body_*", "D_r_body_*", "D_t_axial_over_perp", "D_r_axial_over_perp", "alpha"],
+                         "caption": "body-frame diffusion coefficients (run's units) and their anisotropies"}],
+            "plots": ratio_plots,
+        },
+    }
+
+
+for smoke in (True, False):
+    write("lb_sphere_radius_sweep" + ("-smoke" if smoke else ""), sphere_sweep_manifest(smoke))
+    write("lb_ellipsoid_sweep" + ("-smoke" if smoke else ""), ellipsoid_manifest(smoke))

@@ -64,8 +64,8 @@ for app in apps:
         via = subprocess.run([os.path.join(bin_dir, "anisodyn"), app[len("anisodyn-"):], "--describe"], capture_output=True, text=True, timeout=60)
         expect(via.returncode == 0 and json.loads(via.stdout) == d, f"anisodyn {app[len('anisodyn-'):]} --describe is the same")
 engines = sorted(a for a, d in descriptions.items() if d["role"] == "engine")
-expect(engines == ["anisodyn-bd", "anisodyn-dmc", "anisodyn-dpd", "anisodyn-mc"], f"the engines: {', '.join(engines)}")
-expect(all(descriptions[a]["replica"] for a in ("anisodyn-config", "anisodyn-mc", "anisodyn-dmc", "anisodyn-bd", "anisodyn-dpd")) and
+expect(engines == ["anisodyn-bd", "anisodyn-dmc", "anisodyn-dpd", "anisodyn-lb", "anisodyn-mc"], f"the engines: {', '.join(engines)}")
+expect(all(descriptions[a]["replica"] for a in ("anisodyn-config", "anisodyn-mc", "anisodyn-dmc", "anisodyn-bd", "anisodyn-dpd", "anisodyn-lb")) and
        not any(d["replica"] for a, d in descriptions.items() if d["role"] in ("analysis", "tensors")),
        "builder and engines take --replica; analysis and hydro do not")
 

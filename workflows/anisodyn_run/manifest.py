@@ -274,7 +274,7 @@ THEORY_KEYS = {"constant": {"value"}, "linear": {"intercept", "slope"}, "power":
                "hasimoto": {"boundary", "band"}, "periodic_rotation": {"band"}, "tirado_ratio": set(),
                "fit_line": set(), "spheroid": {"factor", "scale"}}
 THEORY_NUMBERS = {"linear": {"intercept", "slope"}}  # keys a line needs, each a number
-SPHEROID_FACTORS = ("A", "B", "t_ax", "t_perp", "r_ax", "r_perp")  # spheroid_theory.FACTORS
+SPHEROID_FACTORS = ("A", "B", "t_ax", "t_perp", "r_ax", "r_perp", "t_ratio", "r_ratio")  # spheroid_theory.FACTORS
 
 
 def check_keys(item, allowed, path, why):

@@ -479,8 +479,11 @@ class Report:
                 ax.fill_between(line, y * (1 - t["band"]), y * (1 + t["band"]), color=line_art.get_color(), alpha=0.15, lw=0,
                                 label=f"± {100 * t['band']:g}%")
         elif kind == "spheroid":
-            # x = phi = a/c: a factor of spec 40 §8.6 (A, B, t_ax, t_perp, r_ax, r_perp), times `scale`.
+            # x = phi = a/c: a factor of spec 40 §8.6 (A, B, t_ax, t_perp, r_ax, r_perp, t_ratio, r_ratio), times `scale`.
             from .spheroid_theory import factor
+            # A single aspect ratio (a smoke) gets the curve over a factor 1.25 either side, so the
+            # point is seen against it.
+            lo, hi = (lo / 1.25, hi * 1.25) if lo == hi and lo > 0 else (lo, hi)
             phis = np.geomspace(lo, hi, 200) if lo > 0 else np.linspace(lo, hi, 200)
             y = [t.get("scale", 1.0) * factor(t["factor"], float(p)) for p in phis]
             ax.plot(phis, y, label=t.get("label", f"spheroid {t['factor']} (spec 40 §8.6)"), **style)

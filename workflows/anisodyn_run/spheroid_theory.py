@@ -5,6 +5,8 @@ prolate). The factors compare effective radii with a (lab frame, Perrin) or c (b
   A = a / R_eff,t   and   B = (a / R_eff,r)^3            (orientation averages, lab frame)
   t_ax, t_perp = R_eff,t along / across the axis, over c  (Happel-Brenner E, F prolate; G, H oblate)
   r_ax, r_perp = (R_eff,r about / across the axis, over c)^3   (Perrin I, J prolate; K, L oblate)
+  t_ratio = t_perp / t_ax = D_t,ax / D_t,perp and r_ratio = r_perp / r_ax = D_r,ax / D_r,perp: the
+  body-frame anisotropies, which need no calibration of the effective radius (frictions scale alike)
 The rotational radii come from Perrin's integrals P, Q, evaluated with s = e^y and Gauss-Legendre
 quadrature; the translational ones from the closed forms E-H (and, as a check, from the integrals
 chi and P_i of the general ellipsoid). Lengths are free: the factors depend on phi alone."""
@@ -88,14 +90,20 @@ def axis_translation_radii(phi):
 
 
 def factor(name, phi):
-    """One factor by name: A, B, t_ax, t_perp, r_ax, r_perp."""
+    """One factor by name: A, B, t_ax, t_perp, r_ax, r_perp, t_ratio, r_ratio."""
     if name in ("A", "B"):
         return lab_factors(phi)["AB".index(name)]
     if name in ("t_ax", "t_perp"):
         return translation_factors(phi)[0 if name == "t_ax" else 1]
     if name in ("r_ax", "r_perp"):
         return rotation_factors(phi)[0 if name == "r_ax" else 1]
-    raise ValueError(f"unknown spheroid factor '{name}' (A, B, t_ax, t_perp, r_ax, r_perp)")
+    if name == "t_ratio":
+        t_ax, t_perp = translation_factors(phi)
+        return t_perp / t_ax
+    if name == "r_ratio":
+        r_ax, r_perp = rotation_factors(phi)
+        return r_perp / r_ax
+    raise ValueError(f"unknown spheroid factor '{name}' (A, B, t_ax, t_perp, r_ax, r_perp, t_ratio, r_ratio)")
 
 
-FACTORS = ("A", "B", "t_ax", "t_perp", "r_ax", "r_perp")
+FACTORS = ("A", "B", "t_ax", "t_perp", "r_ax", "r_perp", "t_ratio", "r_ratio")

@@ -184,12 +184,16 @@ State build_configuration(tool::ConfigNode& cfg, const std::optional<State>& exi
 
   // Minimum image needs every edge to be at least twice the largest interaction range (of hard
   // bodies: a liquid fill's colloids and liquid do not interact as such, and the DPD engine checks
-  // its own ranges).
+  // its own ranges). A lone body has no pair: it needs only to fit in the box without touching its
+  // images (an LB raspberry at infinite dilution, spec 40 §7.1; its engine checks its own margins).
+  std::size_t placed = state.particles.size();
+  for (const std::size_t n : req.counts) placed += n;
   const double largest = liquid_fill ? 0.0 : largest_pair_cutoff(state.species);
-  if (state.box.shortest_edge() < 2.0 * largest)
-    cfg.fail(existing ? "" : "box", "expected box edges of at least " + std::to_string(2.0 * largest) +
-                                        " (twice the largest cut-off, for the minimum image); the box is " +
-                                        std::to_string(state.box.shortest_edge()) + " across");
+  const double needed = placed == 1 ? largest : 2.0 * largest;
+  if (state.box.shortest_edge() < needed)
+    cfg.fail(existing ? "" : "box", "expected box edges of at least " + std::to_string(needed) +
+                                        (placed == 1 ? " (the body's largest extent)" : " (twice the largest cut-off, for the minimum image)") +
+                                        "; the box is " + std::to_string(state.box.shortest_edge()) + " across");
 
   // Replica K draws from its own stream; replica 0 keeps the stream of a run without --replica.
   Rng rng(seed, 0x00C0F16ULL + (replica << 32));
