@@ -80,6 +80,32 @@ for smoke in (True, False):
     write("lb_bead_resistance_sweep" + ("-smoke" if smoke else ""), resistance_manifest(smoke))
 
 
+def stokes_box_validation():
+    """The D2a drag of one raspberry at five box sizes, each run for ten decay times L^2/(4 pi^2 nu)
+    of the largest box: the mobility U/F against 1/L and its fitted intercept (docs/validation.md)."""
+    m = resistance_manifest(False)
+    boxes, t_run, t_window = [24, 32, 40, 50, 64], 1300, 200
+    m["study"] = "lb_stokes_drag_box"
+    m["description"] = ("Validation of D2a (docs/validation.md): the fixed raspberry sphere R = 3.25 at xi_bead = 1000 (nominal) in the "
+                        "deterministic fluid between walls moving at U (as lb_bead_resistance_sweep), boxes 24 ... 64, "
+                        f"{t_run} t0 each (ten decay times L^2/(4 pi^2 nu) of the largest box), the last {t_window} t0 averaged; "
+                        "the mobility U/F against 1/L with its fitted line (intercept 1/xi_0).")
+    m["grid"] = {"d": [6.5], "xi_bead": [1000], "L": boxes}
+    m["stages"][1]["params"]["steps"] = round(t_run / DT)
+    m["stages"][2]["params"]["window"] = {"from": t_run - t_window}
+    m["report"] = {"title": "D2a validation: drag against box size",
+                   "scalars": [{"stage": "drag", "names": ["xi_t_over_6pi_eta_R", "R_eff_t", "mobility_t"], "caption": "per box"}],
+                   "plots": [{"name": "mobility", "stage": "drag", "scalar": "mobility_t", "x": "L", "x_power": -1,
+                              "theory": [{"kind": "fit_line", "label": "1/xi_0 + c_1 / L"}],
+                              "xlabel": "1/L (1/sigma)", "ylabel": "U / F (t0/M0)", "title": "Mobility of the fixed raspberry against 1/L"}]}
+    with open(os.path.join(OUT, "validation", "lb_stokes_drag_box.json"), "w") as f:
+        json.dump(m, f, indent=2, ensure_ascii=False)
+        f.write("\n")
+
+
+stokes_box_validation()
+
+
 # --- D3, D4: diffusion of free raspberries (spec 40 §7.1, §8) -------------------------------------
 L_ELLIPSOID = [27, 32, 38, 48, 55, 64, 76, 94]      # spec 40 §7.1
 RADII = [2.25, 2.75, 3.25, 3.75, 4.25, 4.75, 5.25, 5.75]

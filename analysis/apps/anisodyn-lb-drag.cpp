@@ -19,7 +19,7 @@ namespace {
 tool::Description description() {
   return analysis_description(
       {tool::optional("blocks", "integer", 10, "a single run's rows in this many blocks for the errors (several runs: one sample each)")},
-      "scalars xi_t (simulated units), xi_t_water, xi_t_SI, R_eff_t, xi_t_over_6pi_eta_R, U (the wall speed), each with its error");
+      "scalars xi_t (simulated units), xi_t_water, xi_t_SI, mobility_t, R_eff_t, xi_t_over_6pi_eta_R, U (the wall speed), each with its error");
 }
 
 struct DragRun {
@@ -95,6 +95,8 @@ int main(int argc, char** argv) {
     run.out.scalar({"xi_t_water", xi / d.friction_scale, xi_error / d.friction_scale, "M0/t0",
                     "xi_t in water units: divided by the friction scale s = nu_sim/nu_water of nominal bead frictions (spec 40 §1.1; 1 otherwise)", details});
     run.out.scalar({"xi_t_SI", xi / d.friction_scale * d.friction_si, xi_error / d.friction_scale * d.friction_si, "kg/s", "xi_t_water in SI", details});
+    run.out.scalar({"mobility_t", 1.0 / xi, xi_error / (xi * xi), "t0/M0",
+                    "U over the drag: 1/xi_t, which Hasimoto's periodic correction makes linear in 1/L (spec 40 §8.1: its intercept is 1/xi_0)", details});
     run.out.scalar({"R_eff_t", xi / six_pi_eta, xi_error / six_pi_eta, "sigma", "effective hydrodynamic radius xi_t / (6 pi eta), eta = rho nu of the simulated fluid",
                     details});
     run.out.scalar({"xi_t_over_6pi_eta_R", xi / (six_pi_eta * d.radius), xi_error / (six_pi_eta * d.radius), "1",
