@@ -106,6 +106,64 @@ def stokes_box_validation():
 stokes_box_validation()
 
 
+# --- D5: a raspberry sphere in a cylindrical pore (spec 40 §6, §7.3, §9) ----------------------------
+R_PORE_RASPBERRY, R_WALL_BEAD = 4.25, 6.25
+ETA_SIM = 6.004 * NU_SIM
+D0_STOKES = 1.0 / (6 * 3.141592653589793 * ETA_SIM * R_PORE_RASPBERRY)  # kT/(6 pi eta R), R = 4.25
+
+
+def pore_manifest(smoke):
+    import math
+    if smoke:
+        lambdas, xis, l_z, replicas, steps = [0.5], [1000], 24, 2, 20_000
+        l_xy = {0.5: 32}
+    else:
+        lambdas, xis, l_z, replicas, steps = [0.1, 0.2, 0.3, 0.4, 0.5], [50, 200, 1000], 85, 1, 1_200_000 * ROW
+        l_xy = {lam: math.ceil(2 * (R_PORE_RASPBERRY / lam + R_WALL_BEAD) + 2) for lam in lambdas}  # spec 40 §6's decision
+    pores = [R_PORE_RASPBERRY / lam for lam in lambdas]
+    grid = {"R_pore": pores, "L_xy": [l_xy[lam] for lam in lambdas], "xi_bead": xis}
+    per_component = [{"name": f"S_{a}" + ("" if smoke else f"_xi{xi}"), "stage": "pore", "table": "pore_bins", "x": "beta", "y": [f"S_{a}"],
+                      **({} if smoke else {"select": {"xi_bead": xi}}),
+                      "xlabel": "beta = d / (R_pore - R)", "ylabel": f"S_{a} = D_0 / D_{a}^p",
+                      "title": f"Enhanced drag, {'radial' if a == 'x' else 'azimuthal' if a == 'y' else 'axial'}"
+                      + ("" if smoke else f" (xi_bead = {xi})")}
+                     for xi in (xis[:1] if smoke else xis) for a in "xyz"]
+    return {
+        "study": "lb_pore" + ("-smoke" if smoke else ""),
+        "description": ("D5 smoke: " if smoke else "Study D5 (spec 60 D5, spec 40 §6, §7.3, §9; Ustach & Faller): ")
+        + "a raspberry sphere R = 4.25 in a cylindrical pore along z (solid nodes beyond R_pore, halfway bounce-back; wall beads r_p = 6.25 "
+          "5 nm apart at R_pore + r_p repelling the inner layer by WCA sigma = 6.75), the fluctuating fluid (nu = 0.8, xi_bead nominal); "
+          "pore-frame MSDs per beta bin (0.05) over the first 25 recordings and S_i = D_0 / D_i^p (anisodyn-lb-pore). Decision: D_0 is "
+          f"the Stokes value kT/(6 pi eta R) = {D0_STOKES:.6g} sigma^2/t0 for R = 4.25 (the study proper divides by D3's extrapolated D_0 at "
+          "the same xi_bead, which a manifest cannot pass between studies: rescale S by that ratio). "
+        + (f"lambda = 0.5 (R_pore = 8.5), L_xy = 32, L_z = 24 (reduced), xi_bead = 1000, {replicas} runs of {steps} MD steps." if smoke else
+           f"lambda 0.1 ... 0.5, xi_bead 50, 200, 1000, L_z = {l_z}, L_xy = 2(R_pore + r_p) + 2 rounded up; 1.2 x 10^6 recordings each. "
+           "The single-layer ablation raspberries are not in this manifest yet."),
+        "replicas": replicas,
+        "grid": grid,
+        "zip": [["R_pore", "L_xy"]],
+        "stages": [
+            {"name": "config", "tool": "config", "replicate": False, "params": {
+                "seed": 101, "placement": "centre",
+                "species": [{"name": "raspberry", "shape": {"type": "sphere", "diameter": 2 * R_PORE_RASPBERRY}}],
+                "composition": [{"species": "raspberry", "count": 1}], "box": {"edges": ["${grid.L_xy}", "${grid.L_xy}", l_z]}}},
+            {"name": "lb", "tool": "lb", "inputs": ["config"], "params": {
+                "seed": 102, "time_step": DT, "steps": steps, "observe_every": 10 * ROW, "frames": {"every_steps": ROW},
+                "raspberries": {"xi_bead": "${grid.xi_bead}"}, "pore": {"radius": "${grid.R_pore}"}}},
+            {"name": "pore", "tool": "lb-pore", "inputs": ["lb"], "params": {"D0": D0_STOKES, "lags": 25, "bin_width": 0.05}},
+        ],
+        "report": {
+            "title": "D5" + (" smoke" if smoke else "") + ": enhanced drag in a cylindrical pore",
+            "scalars": [{"stage": "pore", "names": ["S_*_centreline"], "caption": "S_i of the sub-trajectories starting near the axis (beta < 0.1)"}],
+            "plots": per_component,
+        },
+    }
+
+
+for smoke in (True, False):
+    write("lb_pore" + ("-smoke" if smoke else ""), pore_manifest(smoke))
+
+
 # --- D3, D4: diffusion of free raspberries (spec 40 §7.1, §8) -------------------------------------
 L_ELLIPSOID = [27, 32, 38, 48, 55, 64, 76, 94]      # spec 40 §7.1
 RADII = [2.25, 2.75, 3.25, 3.75, 4.25, 4.75, 5.25, 5.75]

@@ -151,3 +151,36 @@ with h5py.File(near, "r+") as f:
     p[0] = new
 expect_bad_input("a raspberry crossing the wall layer", [tool("anisodyn-lb"), "--config", write("bad.json", {**good, "walls": {"normal": "x"}}),
                                                          "--input", near, "--output", "bad.h5"], ["walls.normal", "bad.json"])
+
+# 5. A pore (spec 40 §6): the raspberry's inner layer against the wall beads keeps its centre within
+# R_pore - R of the axis (up to the WCA's soft edge); the pore's own bad input.
+pore_cfg = {"seed": 1, "placement": "centre", "species": [{"name": "body", "shape": SPHERE}], "composition": [{"species": "body", "count": 1}],
+            "box": {"edges": [24, 24, 20]}}
+r = run([tool("anisodyn-config"), "-q", "--config", write("pore_config.json", pore_cfg), "--output", "pore_start.h5"])
+assert r.returncode == 0, r.stderr
+with h5py.File("pore_start.h5", "r+") as f:  # start against the wall: 1.2 off the axis in a pore of radius 3.6 (gap 1.35)
+    f["particles/all/position/value"][0] = np.array([[13.2, 12.0, 10.0]])
+pore_run = {"seed": 2, "time_step": 0.01, "steps": 2000, "observe_every": 100, "frames": {"every_steps": 20}, "fluid": {"warmup_steps": 0},
+            "raspberries": {"xi_bead": 200}, "pore": {"radius": 3.6}}
+r = run([tool("anisodyn-lb"), "-q", "--config", write("pore.json", pore_run), "--input", "pore_start.h5", "--output", "pore.h5"])
+assert r.returncode == 0, r.stderr
+with h5py.File("pore.h5") as f:
+    x = f["particles/all/position/value"][:, 0, :]
+    wall, _ = observable(f, "pore_force")
+d = np.hypot(x[:, 0] - 12, x[:, 1] - 12)
+print(f"raspberry R = 2.25 in a pore of radius 3.6: distance from the axis {d.min():.3f} ... {d.max():.3f} (gap 1.35); "
+      f"largest mean wall force per row {np.abs(wall).max():.3g}")
+assert np.abs(wall).max() > 0  # it did meet the wall
+assert d.max() < 1.35 + 0.3, d.max()  # the WCA edge is soft by a fraction of sigma's 1/6-power range
+bad_pore = [
+    ("a raspberry outside the pore", {**good, "pore": {"radius": 3.0}}, "pore_start.h5", "pore.radius"),
+    ("wall beads outside the box", {**good, "pore": {"radius": 8.0}}, "pore_start.h5", "pore.radius"),
+    ("walls and a pore", {**good, "pore": {"radius": 3.6}, "walls": {"normal": "x"}}, "pore_start.h5", "pore"),
+    ("placement centre for two bodies", None, None, "composition"),
+]
+for what, cfg, start, path in bad_pore:
+    if cfg is None:
+        expect_bad_input(what, [tool("anisodyn-config"), "--config", write("bad.json", {**pore_cfg, "composition": [{"species": "body", "count": 2}]}),
+                                "--output", "bad.h5"], [path, "bad.json"])
+        continue
+    expect_bad_input(what, [tool("anisodyn-lb"), "--config", write("bad.json", cfg), "--input", start, "--output", "bad.h5"], [path, ("bad.json", start)])

@@ -92,6 +92,13 @@ void place_uniformly(State& state, const PlacementRequest& req, Rng& rng) {
     state.particles.add(s, Vec3(rng.uniform() * L.x(), rng.uniform() * L.y(), rng.uniform() * L.z()), q, id++);
 }
 
+void place_at_centre(State& state, const PlacementRequest& req, Rng& rng) {
+  const auto particles = draw_particles(req, rng);
+  if (particles.size() != 1 || state.particles.size() != 0)
+    throw PlacementFailure("the centre holds exactly one particle; " + std::to_string(particles.size() + state.particles.size()) + " requested");
+  state.particles.add(particles.front().first, 0.5 * state.box.edges(), particles.front().second, next_id(state));
+}
+
 void insert_randomly(State& state, const PlacementRequest& req, Rng& rng) {
   const auto particles = draw_particles(req, rng);
   // Largest first: small particles fill the gaps afterwards. (Indices are sorted, not the pairs:

@@ -155,7 +155,7 @@ State build_configuration(tool::ConfigNode& cfg, const std::optional<State>& exi
     orientation_nodes.emplace_back(s, e.optional_object("orientation"));
   }
   const std::string placement =
-      cfg.choice("placement", {"lattice", "random", "uniform", "colloids_in_liquid"}, existing ? "random" : "lattice");
+      cfg.choice("placement", {"lattice", "random", "uniform", "colloids_in_liquid", "centre"}, existing ? "random" : "lattice");
   const bool liquid_fill = placement == "colloids_in_liquid";
   // Colloids in a liquid start with random orientations (spec 30 §5); other placements, aligned.
   for (auto& [s, node] : orientation_nodes)
@@ -200,9 +200,11 @@ State build_configuration(tool::ConfigNode& cfg, const std::optional<State>& exi
   try {
     if (placement == "lattice") place_on_lattice(state, req, rng);
     else if (placement == "uniform") place_uniformly(state, req, rng);
+    else if (placement == "centre") place_at_centre(state, req, rng);
     else if (liquid_fill) place_colloids(state, req, rng);
     else insert_randomly(state, req, rng);
   } catch (const PlacementFailure& e) {
+    if (placement == "centre") cfg.fail("composition", std::string("expected one particle for placement \"centre\": ") + e.what());
     cfg.fail(existing ? "composition" : "box.packing_fraction", std::string("packing fraction cannot be reached: ") + e.what());
   }
   if (fill) add_liquid(state, *fill, rng, cfg, liquid_record);

@@ -185,6 +185,7 @@ Vec3 LbFluid::momentum_density(std::size_t node) const {
 }
 
 Vec3 LbFluid::velocity(std::size_t node, bool with_half_force) const {
+  if (solid_[node]) return wall_velocity_.empty() ? Vec3::Zero() : wall_velocity_[node];
   const auto m = conserved_modes(node);
   const Vec3 j(m[1], m[2], m[3]);
   return (with_half_force ? Vec3(j + 0.5 * force_at(node)) : j) / m[0];

@@ -67,6 +67,15 @@ LbProtocol parse_lb_protocol(tool::ConfigNode& cfg) {
       w->fail("velocity", "expected a tangential velocity: its " + normal + " component (along the wall's normal) must be 0");
     p.walls = walls;
   }
+  if (auto q = cfg.optional_object("pore")) {
+    if (p.walls) q->fail("", "expected either walls or a pore, not both");
+    PoreParameters pore;
+    pore.radius = q->positive("radius");
+    pore.wall_bead_radius = q->positive("wall_bead_radius", pore.wall_bead_radius);
+    pore.bead_spacing = q->positive("wall_bead_spacing", pore.bead_spacing);
+    pore.epsilon = q->positive("epsilon", pore.epsilon);
+    p.pore = pore;
+  }
   return p;
 }
 

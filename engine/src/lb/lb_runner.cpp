@@ -48,7 +48,8 @@ const char* layer_name(BeadLayer layer) {
 }  // namespace
 
 nlohmann::json LbRowSums::to_json() const {
-  return {{"steps", steps}, {"force", run::vec3_json(force)}, {"torque", run::vec3_json(torque)}, {"translational", translational}, {"rotational", rotational}};
+  return {{"steps", steps},           {"force", run::vec3_json(force)},     {"torque", run::vec3_json(torque)},
+          {"pore_force", run::vec3_json(pore_force)}, {"translational", translational}, {"rotational", rotational}};
 }
 
 LbRowSums LbRowSums::from_json(const nlohmann::json& j) {
@@ -56,6 +57,7 @@ LbRowSums LbRowSums::from_json(const nlohmann::json& j) {
   r.steps = j.at("steps").get<std::int64_t>();
   r.force = run::vec3_from_json(j.at("force"));
   r.torque = run::vec3_from_json(j.at("torque"));
+  r.pore_force = run::vec3_from_json(j.at("pore_force"));
   r.translational = j.at("translational").get<double>();
   r.rotational = j.at("rotational").get<double>();
   return r;
@@ -181,10 +183,63 @@ void LbRunner::build_fluid(const std::array<int, 3>& dims) {
         for (int x = 0; x < dims[0]; ++x)
           if (std::array<int, 3>{x, y, z}[static_cast<std::size_t>(normal)] == 0) fluid_->set_solid(fluid_->node(x, y, z), wall);
   }
+  if (protocol_.pore) {
+    // Nodes whose centre lies beyond R_pore from the axis are solid: with halfway bounce-back the
+    // hydrodynamic wall is the staircase about R_pore (spec 40 §6).
+    const Vec3 edges = state_.box.edges();
+    for (int z = 0; z < dims[2]; ++z)
+      for (int y = 0; y < dims[1]; ++y)
+        for (int x = 0; x < dims[0]; ++x)
+          if (std::hypot((x + 0.5) * units_.agrid - 0.5 * edges.x(), (y + 0.5) * units_.agrid - 0.5 * edges.y()) > protocol_.pore->radius)
+            fluid_->set_solid(fluid_->node(x, y, z));
+  }
   summary_["fluid"] = {{"nodes", {dims[0], dims[1], dims[2]}}, {"agrid", units_.agrid}, {"lb_steps", units_.lb_steps},
                        {"lb_time_step", units_.lb_time_step()}, {"density_lattice", params.density}, {"viscosity_lattice", params.viscosity},
                        {"tau", 3.0 * params.viscosity + 0.5}, {"kT_lattice", params.kT}, {"thermal", f.thermal},
                        {"shear_relaxation", params.shear_relaxation()}, {"warmup_steps", f.warmup_steps}};
+}
+
+void LbRunner::build_pore(const std::string& config_file) {
+  const PoreParameters& pore = *protocol_.pore;
+  const Vec3 edges = state_.box.edges();
+  const double wall = pore.radius + pore.wall_bead_radius;
+  if (0.5 * std::min(edges.x(), edges.y()) < wall)
+    throw InputError(config_file, "pore.radius", "expected the wall beads (at R_pore + r_p = " + std::to_string(wall) + " from the axis) inside the box: "
+                                                 "edges along x and y of at least " + std::to_string(2.0 * wall) + " (spec 40 §6: L_xy = 2(R_pore + r_p) + 2, rounded up)");
+  SiteTable inner(state_.species.size());
+  for (std::size_t s = 0; s < state_.species.size(); ++s) {
+    const RaspberryGeometry& g = geometry_[s];
+    for (std::size_t k = 0; k < g.offset.size(); ++k)
+      if (g.layer[k] == BeadLayer::kInner) inner[s].offsets.push_back(g.offset[k]);
+  }
+  pore_ = std::make_unique<PoreWalls>(pore, state_.box, std::move(inner));
+  if (edges.z() < 2.0 * std::pow(2.0, 1.0 / 6.0) * pore_->sigma())
+    throw InputError(config_file, "pore.wall_bead_radius", "expected a box along the pore at least twice the wall's cut-off 2^(1/6) (r_r + r_p) = " +
+                                                             std::to_string(std::pow(2.0, 1.0 / 6.0) * pore_->sigma()) + " long");
+  for (std::size_t i = 0; i < state_.particles.size(); ++i) {
+    const double reach = geometry_[static_cast<std::size_t>(state_.particles.species[i])].semi_axes.maxCoeff();
+    const double d = pore_->radial_distance(state_.particles.position(i));
+    if (d + reach > pore.radius)
+      throw InputError(config_file, "pore.radius", "raspberry " + std::to_string(state_.particles.id[i]) + " (centre " + std::to_string(d) + " from the axis, reach " +
+                                                   std::to_string(reach) + ") is not inside the pore of radius " + std::to_string(pore.radius));
+  }
+  summary_["pore"] = {{"radius", pore.radius}, {"wall_bead_radius", pore.wall_bead_radius}, {"rings", pore_->rings()},
+                      {"ring_spacing", pore_->ring_spacing()}, {"beads_per_ring", pore_->beads_per_ring()}, {"sigma", pore_->sigma()}};
+}
+
+void LbRunner::forces(const State& s, BodyForces& out) {
+  (*coupling_)(s, out);
+  if (!pore_) return;
+  BodyForces walls;
+  walls.reset(s.particles.size());
+  pore_->add(s, walls);
+  last_pore_force_ = Vec3::Zero();
+  for (std::size_t i = 0; i < s.particles.size(); ++i) {
+    out.force[i] += walls.force[i];
+    out.torque[i] += walls.torque[i];
+    last_pore_force_ += walls.force[i];
+  }
+  out.energy += walls.energy;
 }
 
 LbRunner::LbRunner(State& state, const LbProtocol& protocol, const std::string& config_file, bool quiet)
@@ -208,6 +263,7 @@ LbRunner::LbRunner(State& state, const LbProtocol& protocol, const std::string& 
                                                           std::to_string(1.5 * units_.agrid) + " and " + std::to_string(length - 0.5 * units_.agrid));
     }
   }
+  if (protocol_.pore) build_pore(config_file);
   build_fluid(dims);
   SiteTable sites(state_.species.size());
   std::vector<Vec3> moments;
@@ -219,7 +275,7 @@ LbRunner::LbRunner(State& state, const LbProtocol& protocol, const std::string& 
   const double xi = protocol_.raspberries.xi_bead * protocol_.raspberries.scaling.friction_scale();
   coupling_ = std::make_unique<BodyFluidCoupling>(*fluid_, std::move(sites), std::move(moments), xi, kT,
                                                   stream_seed(protocol_.seed, kBeadSeed, protocol_.replica), units_, protocol_.raspberries.velocity);
-  integrator_ = std::make_unique<RigidBodyNve>(protocol_.time_step, inertia_, [this](const State& s, BodyForces& out) { (*coupling_)(s, out); },
+  integrator_ = std::make_unique<RigidBodyNve>(protocol_.time_step, inertia_, [this](const State& s, BodyForces& out) { forces(s, out); },
                                                [this](State& s, double dt) { coupling_->after_step(s, dt); });
   summary_["units"] = units_record(protocol_.raspberries.scaling, protocol_.fluid.density);
   summary_["kT"] = kT;
@@ -236,11 +292,11 @@ void LbRunner::start() {
     p.carry_angular_momenta();
     for (std::size_t i = 0; i < p.size(); ++i) p.set_angular_momentum(i, Vec3::Zero());
   }
-  BodyForces forces;
-  forces.reset(p.size());
+  BodyForces start_forces;
+  start_forces.reset(p.size());
   coupling_->set_noise_step(0);
-  (*coupling_)(state_, forces);
-  integrator_->restore_forces(std::move(forces));
+  forces(state_, start_forces);
+  integrator_->restore_forces(std::move(start_forces));
 }
 
 double LbRunner::advance() {
@@ -254,6 +310,7 @@ void LbRunner::add_to_row() {
   const Particles& p = state_.particles;
   const BodyForces& f = integrator_->forces();
   row_.steps += 1;
+  row_.pore_force += last_pore_force_;
   for (std::size_t i = 0; i < p.size(); ++i) {
     row_.force += f.force[i];
     row_.torque += f.torque[i];
@@ -279,6 +336,7 @@ void LbRunner::observe(io::H5mdWriter& out, std::int64_t step, double t) {
   const Particles& p = state_.particles;
   out.append_observable("colloid_force", step, t, run::flatten({row_.force / steps}));
   out.append_observable("colloid_torque", step, t, run::flatten({row_.torque / steps}));
+  if (pore_) out.append_observable("pore_force", step, t, run::flatten({row_.pore_force / steps}));
   if (!protocol_.raspberries.fixed && p.size() > 0) {
     const double n = static_cast<double>(p.size());
     out.append_observable("colloid_temperature_translational", step, t, row_.translational / (3.0 * n * steps));
@@ -311,8 +369,9 @@ void LbRunner::describe_observables(io::H5mdWriter& out) {
     out.set_observable_attribute(name, "units", units);
     out.set_observable_attribute(name, "definition", definition);
   };
-  attr("colloid_force", "M0 sigma/t0^2", "sum over the raspberries of the fluid coupling's force (x, y, z), mean over the row's MD steps (for fixed ones: the drag)");
-  attr("colloid_torque", "M0 sigma^2/t0^2", "sum over the raspberries of the coupling's torque about their centres (x, y, z), mean over the row's MD steps");
+  attr("colloid_force", "M0 sigma/t0^2", "sum over the raspberries of the force on them, the fluid coupling's and a pore wall's (x, y, z), mean over the row's MD steps (for fixed ones between walls: the drag)");
+  if (pore_) attr("pore_force", "M0 sigma/t0^2", "sum over the raspberries of the pore wall beads' WCA force on their inner layers (x, y, z), mean over the row's MD steps");
+  attr("colloid_torque", "M0 sigma^2/t0^2", "sum over the raspberries of the torque about their centres (x, y, z), mean over the row's MD steps");
   if (!protocol_.raspberries.fixed && state_.particles.size() > 0) {
     attr("colloid_temperature_translational", "kT", "sum of M V^2 / (3 N) over the N raspberries, full-step velocities, mean over the row's MD steps");
     attr("colloid_temperature_rotational", "kT", "sum of L . omega / (3 N) over the N raspberries, full-step, mean over the row's MD steps");

@@ -49,6 +49,9 @@ void place_on_lattice(State& state, const PlacementRequest& request, Rng& rng);
 /// Appends the particles at independent uniformly random positions without any overlap test: an
 /// ideal-gas start for soft particles (a DPD liquid), whose shapes do not exclude each other.
 void place_uniformly(State& state, const PlacementRequest& request, Rng& rng);
+/// One particle at the centre of the box (a body at infinite dilution, in a pore or between walls:
+/// spec 40 §6–7); PlacementFailure for any other count.
+void place_at_centre(State& state, const PlacementRequest& request, Rng& rng);
 
 /// Appends the particles one by one at uniformly random positions, rejecting positions that
 /// overlap anything already present (largest particles first).

@@ -75,7 +75,8 @@ class LbFluid {
   /// j = Σ_i c_i n_i, without the half force.
   Vec3 momentum_density(std::size_t node) const;
   /// The fluid velocity u = (j + f/2)/ρ with the force density pending for the next step, or
-  /// j/ρ alone (with_half_force false).
+  /// j/ρ alone (with_half_force false); a solid node's is its wall velocity (a bead near a wall
+  /// interpolates towards it, and the impulse it gives a solid node goes into the wall).
   Vec3 velocity(std::size_t node, bool with_half_force = true) const;
   /// Σ ρ and Σ j over the fluid nodes.
   double total_mass() const;

@@ -10,6 +10,7 @@
 //                    "centre_couples": true, "fixed": false, "coupling_velocity": "with_half_force",
 //                    "allow_unstable": false},
 //    "walls": {"normal": "y", "velocity": [0, 0, 0.013976]},
+//    "pore": {"radius": 8.5, "wall_bead_radius": 6.25, "wall_bead_spacing": 5, "epsilon": 1},
 //    "frames": {...}, "observe_every": 200}
 #include <cstdint>
 #include <optional>
@@ -18,6 +19,7 @@
 
 #include "anisodyn/core/types.hpp"
 #include "anisodyn/lb/point_coupling.hpp"
+#include "anisodyn/lb/pore_walls.hpp"
 #include "anisodyn/lb/si_units.hpp"
 #include "anisodyn/run/time_step_run.hpp"
 #include "anisodyn/tool/json_config.hpp"
@@ -54,6 +56,9 @@ struct LbProtocol : run::TimeStepRun {
     Vec3 velocity = Vec3::Zero();   ///< σ/t0, tangential
   };
   std::optional<Walls> walls;
+  /// A cylindrical pore along z through the box's centre (spec 40 §6): solid nodes beyond the
+  /// radius, wall beads repelling the raspberries' inner layers; absent: none.
+  std::optional<PoreParameters> pore;
 };
 
 LbProtocol parse_lb_protocol(tool::ConfigNode& cfg);

@@ -11,7 +11,8 @@
 // so a restart continues bit for bit.
 //
 // Observables, each the mean over the MD steps of its row unless said otherwise (docs/lb.md):
-// the coupling's total force and torque on the raspberries (for fixed ones: the drag), their
+// the total force and torque on the raspberries (the coupling's and a pore's; for fixed ones
+// between walls: the drag), the pore wall's force alone, their
 // translational and rotational temperatures (free ones), and at the row's last step the fluid's
 // temperature Σ ρ u²/(3 N_nodes), the momentum of the fluid (with the impulses pending for its
 // next step), of the bodies, and their sum with the half kick the bodies have still to take.
@@ -29,6 +30,7 @@
 #include "anisodyn/lb/body_fluid_coupling.hpp"
 #include "anisodyn/lb/lb_fluid.hpp"
 #include "anisodyn/lb/lb_protocol.hpp"
+#include "anisodyn/lb/pore_walls.hpp"
 #include "anisodyn/lb/raspberry.hpp"
 #include "anisodyn/run/production_runner.hpp"
 
@@ -37,7 +39,7 @@ namespace anisodyn::lb {
 /// Per-step sums that an observation row averages.
 struct LbRowSums {
   std::int64_t steps = 0;
-  Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
+  Vec3 force = Vec3::Zero(), torque = Vec3::Zero(), pore_force = Vec3::Zero();
   double translational = 0.0, rotational = 0.0;  // Σ M V², Σ L·ω
 
   nlohmann::json to_json() const;
@@ -71,6 +73,10 @@ class LbRunner : public run::FieldlessClient {
   /// Δt Σ ξ_sim / m of each free species (spec 40 §4); refused above 1 unless allow_unstable.
   void check_stability(const std::string& config_file);
   void build_fluid(const std::array<int, 3>& dims);
+  /// The pore's checks against the box and the bodies, and its wall beads (spec 40 §6).
+  void build_pore(const std::string& config_file);
+  /// The integrator's force field: the bead coupling, and the pore's wall.
+  void forces(const State& s, BodyForces& out);
   /// A fresh run's start: the warm-up, the bodies' velocities (the input's, else at rest) and the
   /// first forces.
   void start();
@@ -86,6 +92,8 @@ class LbRunner : public run::FieldlessClient {
   std::vector<BodyInertia> inertia_;         // per species
   std::unique_ptr<LbFluid> fluid_;
   std::unique_ptr<BodyFluidCoupling> coupling_;
+  std::unique_ptr<PoreWalls> pore_;  // null: no pore
+  Vec3 last_pore_force_ = Vec3::Zero();
   std::unique_ptr<RigidBodyNve> integrator_;
   run::ProductionRunner production_;
   LbRowSums row_;
