@@ -106,6 +106,46 @@ def stokes_box_validation():
 stokes_box_validation()
 
 
+def einstein_validation():
+    """Fluctuation and dissipation of the whole engine: a free raspberry's D_t in a periodic box
+    against kT over the same raspberry's friction held fixed in the flow a body force drives through
+    that box (Hasimoto's periodic array, whose mobility is the periodic system's, Dünweg & Kremer)."""
+    edge, steps_free, runs = 16, 2_000_000, 4
+    m = {
+        "study": "lb_einstein_periodic",
+        "description": "Validation (docs/validation.md): the raspberry sphere R = 2.25, xi_bead = 50 (nominal) in a periodic 16^3 box of the "
+                       "spec 40 fluid. (1) Held fixed in the deterministic fluid driven by a body force 1e-4 along z for 900 t0 (ten decay times "
+                       "of the mean flow, rho V / xi): xi = F / U with U the fluid's mean velocity, the last 200 t0. (2) Free in the thermal fluid, "
+                       f"{runs} runs of {steps_free // 100} t0: D_t from the MSD over lags 40 ... 120 t0 (after five decay times L^2/(4 pi^2 nu) "
+                       "= 8 t0 of the slowest fluid mode). Einstein: D_t = kT mobility_t.",
+        "replicas": runs,
+        "grid": {"d": [4.5], "L": [edge]},
+        "stages": [
+            {"name": "config", "tool": "config", "replicate": False, "params": {
+                "seed": 111, "placement": "centre", "species": [{"name": "raspberry", "shape": {"type": "sphere", "diameter": "${grid.d}"}}],
+                "composition": [{"species": "raspberry", "count": 1}], "box": {"edges": ["${grid.L}"] * 3}}},
+            {"name": "fixed", "tool": "lb", "inputs": ["config"], "replicate": False, "params": {
+                "seed": 112, "time_step": DT, "steps": 90_000, "observe_every": 1000,
+                "fluid": {"thermal": False, "warmup_steps": 0, "body_force": [0, 0, 1e-4]},
+                "raspberries": {"xi_bead": 50, "fixed": True}}},
+            {"name": "drag", "tool": "lb-drag", "inputs": ["fixed"], "params": {"window": {"from": 700}, "blocks": 5}},
+            {"name": "free", "tool": "lb", "inputs": ["config"], "params": {
+                "seed": 113, "time_step": DT, "steps": steps_free, "observe_every": 10_000, "frames": {"every_steps": ROW},
+                "raspberries": {"xi_bead": 50}}},
+            {"name": "diffusion", "tool": "lb-diffusion", "inputs": ["free"], "params": {"fit": {"t_min": 40, "t_max": 120}}},
+        ],
+        "report": {"title": "Einstein relation of the LB engine",
+                   "scalars": [{"stage": "drag", "names": ["xi_t", "mobility_t"], "caption": "fixed raspberry in the driven periodic box"},
+                               {"stage": "diffusion", "names": ["D_t", "D_r", "D_r_three_axis"], "caption": "free raspberry, the same box"}]},
+    }
+    with open(os.path.join(OUT, "validation", "lb_einstein_periodic.json"), "w") as f:
+        json.dump(m, f, indent=2, ensure_ascii=False)
+        f.write("\n")
+
+
+einstein_validation()
+
+
 # --- D5: a raspberry sphere in a cylindrical pore (spec 40 §6, §7.3, §9) ----------------------------
 R_PORE_RASPBERRY, R_WALL_BEAD = 4.25, 6.25
 ETA_SIM = 6.004 * NU_SIM

@@ -1,6 +1,8 @@
 // anisodyn-lb-drag: the translational friction of a raspberry held fixed in the plug flow between
-// moving walls (spec 40 §7.2, study D2a): ξ^t_col = F·û / U from anisodyn-lb's colloid_force over
-// the window's rows (the flow steady), with U the walls' speed and û their direction; in the run's
+// moving walls (spec 40 §7.2, study D2a), or in the flow a body force drives through a periodic box
+// (Hasimoto's periodic array): ξ^t_col = F·û / U from anisodyn-lb's colloid_force over the window's
+// rows (the flow steady), with û the walls' velocity or the body force's direction and U the walls'
+// speed or the fluid's mean velocity along û (its momentum over its mass, row by row); in the run's
 // units, in water units (÷ the friction scale s of spec 40 §1.1) and in SI, and as ξ/(6πηR) and
 // the effective radius ξ/(6πη) (η = ρν of the simulated fluid with the simulated friction, or of
 // water with the water-unit friction: the same ratio).
@@ -24,12 +26,16 @@ tool::Description description() {
 
 struct DragRun {
   Vec3 direction = Vec3::Zero();
-  double speed = 0.0, density = 0.0, viscosity = 0.0, friction_scale = 1.0, friction_si = 0.0;
+  double speed = 0.0;        ///< the walls' speed; 0 for a body-force drive (U from the fluid's momentum)
+  double fluid_mass = 0.0;   ///< ρ V, for the mean velocity of a body-force drive
+  double density = 0.0, viscosity = 0.0, friction_scale = 1.0, friction_si = 0.0;
   double radius = 0.0;  ///< sphere: R; spheroid: the equal-volume sphere's (a b c)^{1/3}
 };
 
+Vec3 vec3_of(const std::vector<double>& v) { return Vec3(v.at(0), v.at(1), v.at(2)); }
+
 /// What a run's parameters say about its flow, fluid and body; InputError naming the file unless
-/// it is an anisodyn-lb run of one fixed raspberry between moving walls.
+/// it is an anisodyn-lb run of one fixed raspberry between moving walls or in a driven periodic box.
 DragRun read_run(const std::string& path) {
   const io::H5mdReader reader(path);
   const nlohmann::json config = reader.parameters();
@@ -39,17 +45,21 @@ DragRun read_run(const std::string& path) {
   const nlohmann::json& units = provenance.at("units");
   if (!config["raspberries"].value("fixed", false))
     throw InputError(path, "/parameters/config", "a run of raspberries held fixed (raspberries.fixed true): a free body's force is no drag");
-  const auto velocity = config.contains("walls") ? config["walls"].value("velocity", std::vector<double>{0, 0, 0}) : std::vector<double>{0, 0, 0};
+  if (config.contains("pore")) throw InputError(path, "/parameters/config", "walls or a body force, not a pore");
+  const std::vector<double> zero{0, 0, 0};
+  const Vec3 wall = vec3_of(config.contains("walls") ? config["walls"].value("velocity", zero) : zero);
+  const Vec3 drive = vec3_of(config.contains("fluid") ? config["fluid"].value("body_force", zero) : zero);
   DragRun d;
-  d.direction = Vec3(velocity.at(0), velocity.at(1), velocity.at(2));
-  d.speed = d.direction.norm();
-  if (!(d.speed > 0.0)) throw InputError(path, "/parameters/config", "walls moving with a non-zero velocity (walls.velocity): no flow, no drag");
-  d.direction /= d.speed;
   d.density = units.at("simulated_dynamic_viscosity").get<double>() / units.at("simulated_kinematic_viscosity").get<double>();
   d.viscosity = units.at("simulated_kinematic_viscosity").get<double>();
   d.friction_scale = units.at("friction_scale").get<double>();
   d.friction_si = units.at("friction_kg_per_s").get<double>();
   const State first = reader.read_frame(0);
+  if ((wall.norm() > 0.0) == (drive.norm() > 0.0))
+    throw InputError(path, "/parameters/config", "either moving walls (walls.velocity) or a body force (fluid.body_force) driving the flow");
+  d.speed = wall.norm();
+  d.direction = wall.norm() > 0.0 ? Vec3(wall / wall.norm()) : Vec3(drive / drive.norm());
+  d.fluid_mass = d.density * first.box.volume();
   if (first.particles.size() != 1) throw InputError(path, "/particles/all", "one raspberry (the drag is the force on the only body)");
   const Shape& shape = first.species.at(static_cast<std::size_t>(first.particles.species[0])).shape;
   d.radius = shape.kind == ShapeKind::Sphere ? 0.5 * shape.diameter : std::cbrt(shape.half_extents().prod());
@@ -67,15 +77,21 @@ int main(int argc, char** argv) {
     run.cfg.finish();
     std::vector<DragRun> runs;
     std::vector<ObservableRows> forces;
+    std::vector<double> speeds;
     for (std::size_t k = 0; k < run.inputs.size(); ++k) {
       run.report_replica(k, run.inputs[k]);
       runs.push_back(read_run(run.inputs[k]));
       const DragRun& d = runs.back();
-      ObservableRows rows = read_rows(run.inputs[k], "colloid_force", [&](double t) { return run.window.contains(t); });
-      // The force along the flow, one column.
-      ObservableRows along{rows.time, {}, 1, rows.units};
-      for (std::size_t r = 0; r < rows.time.size(); ++r)
-        along.value.push_back(d.direction.dot(Vec3(rows.value[3 * r], rows.value[3 * r + 1], rows.value[3 * r + 2])));
+      const auto keep = [&](double t) { return run.window.contains(t); };
+      const ObservableRows rows = read_rows(run.inputs[k], "colloid_force", keep);
+      const ObservableRows momentum = d.speed > 0.0 ? ObservableRows{} : read_rows(run.inputs[k], "fluid_momentum", keep);
+      // Per row: the friction F·û / U, and U.
+      ObservableRows along{rows.time, {}, 1, "M0/t0"};
+      for (std::size_t r = 0; r < rows.time.size(); ++r) {
+        const double u = d.speed > 0.0 ? d.speed : d.direction.dot(vec3_of({momentum.value[3 * r], momentum.value[3 * r + 1], momentum.value[3 * r + 2]})) / d.fluid_mass;
+        along.value.push_back(d.direction.dot(Vec3(rows.value[3 * r], rows.value[3 * r + 1], rows.value[3 * r + 2])) / u);
+        speeds.push_back(u);
+      }
       if (run.inputs.size() == 1 && along.time.size() < blocks)
         run.fail("blocks", "expected at least as many rows of colloid_force in the window (" + std::to_string(along.time.size()) + ") as blocks");
       if (k > 0 && (std::abs(d.speed - runs[0].speed) > 1e-12 * runs[0].speed || std::abs(d.viscosity - runs[0].viscosity) > 1e-12 ||
@@ -84,14 +100,16 @@ int main(int argc, char** argv) {
       forces.push_back(std::move(along));
     }
     const DragRun& d = runs.front();
-    const Estimate force = observable_means(forces, blocks).front();
-    const double xi = force.value / d.speed, xi_error = force.error / d.speed;
+    const Estimate friction = observable_means(forces, blocks).front();
+    const double xi = friction.value, xi_error = friction.error;
+    double mean_speed = 0.0;
+    for (const double u : speeds) mean_speed += u / static_cast<double>(speeds.size());
     const double six_pi_eta = 6.0 * M_PI * d.density * d.viscosity;
     const nlohmann::json details = {{"samples", run.inputs.size() == 1 ? blocks : run.inputs.size()},
                                     {"error", run.inputs.size() == 1 ? "jackknife over blocks of the rows" : "over runs"},
                                     {"radius", d.radius}, {"friction_scale", d.friction_scale}};
-    run.out.scalar({"U", d.speed, 0.0, "sigma/t0", "the walls' speed (the plug flow's far-field velocity)", details});
-    run.out.scalar({"xi_t", xi, xi_error, "M0/t0", "drag along the flow over U: the translational friction in the run's units (simulated viscosity)", details});
+    run.out.scalar({"U", mean_speed, 0.0, "sigma/t0", "the walls' speed (the plug flow's far-field velocity), or the driven fluid's mean velocity along the drive, mean over the rows", details});
+    run.out.scalar({"xi_t", xi, xi_error, "M0/t0", "drag along the flow over U, mean over the rows: the translational friction in the run's units (simulated viscosity)", details});
     run.out.scalar({"xi_t_water", xi / d.friction_scale, xi_error / d.friction_scale, "M0/t0",
                     "xi_t in water units: divided by the friction scale s = nu_sim/nu_water of nominal bead frictions (spec 40 §1.1; 1 otherwise)", details});
     run.out.scalar({"xi_t_SI", xi / d.friction_scale * d.friction_si, xi_error / d.friction_scale * d.friction_si, "kg/s", "xi_t_water in SI", details});

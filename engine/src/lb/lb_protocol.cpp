@@ -24,6 +24,7 @@ LbProtocol::Fluid parse_fluid(tool::ConfigNode& f) {
   fluid.thermal = f.boolean("thermal", fluid.thermal);
   fluid.initial_velocity = f.vec3("initial_velocity", fluid.initial_velocity);
   fluid.warmup_steps = f.non_negative_integer("warmup_steps", fluid.warmup_steps);
+  fluid.body_force = f.vec3("body_force", fluid.body_force);
   if (fluid.warmup_steps % fluid.lb_steps != 0)
     f.fail("warmup_steps", "expected a whole number of LB steps: a multiple of lb_steps (" + std::to_string(fluid.lb_steps) + ")");
   return fluid;

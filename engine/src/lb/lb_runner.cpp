@@ -173,6 +173,8 @@ void LbRunner::build_fluid(const std::array<int, 3>& dims) {
   params.kT = f.thermal ? protocol_.kT * units_.energy_to_lattice() : 0.0;
   params.seed = stream_seed(protocol_.seed, kFluidSeed, protocol_.replica);
   fluid_ = std::make_unique<LbFluid>(dims, params);
+  // A force per volume: per node, times a³; in lattice units, over the lattice force unit.
+  fluid_->set_body_force(f.body_force * units_.agrid * units_.agrid * units_.agrid / units_.force_from_lattice());
   const Vec3 u0 = units_.velocity_to_lattice() * f.initial_velocity;
   for (std::size_t n = 0; n < fluid_->nodes(); ++n) fluid_->set_equilibrium(n, params.density, u0);
   if (protocol_.walls) {

@@ -5,7 +5,7 @@
 //    "kT": 1,
 //    "fluid": {"agrid": 1, "lb_steps": 2, "density": 6.004, "viscosity": 0.8,
 //              "bulk_relaxation": 0, "ghost_relaxation": 0, "thermal": true,
-//              "initial_velocity": [0, 0, 0], "warmup_steps": 1000},
+//              "initial_velocity": [0, 0, 0], "warmup_steps": 1000, "body_force": [0, 0, 0]},
 //    "raspberries": {"species": ["sphere"], "xi_bead": 1000, "xi_bead_is_nominal": true,
 //                    "centre_couples": true, "fixed": false, "coupling_velocity": "with_half_force",
 //                    "allow_unstable": false},
@@ -39,6 +39,7 @@ struct LbProtocol : run::TimeStepRun {
     bool thermal = true;         ///< the fluctuating fluid and bead noise; false: deterministic (Stokes-flow runs)
     Vec3 initial_velocity = Vec3::Zero();  ///< σ/t0: the fluid's starting velocity on every node
     std::int64_t warmup_steps = 1000;      ///< MD steps' worth of fluid-only LB steps before the run (spec 40 §2.4)
+    Vec3 body_force = Vec3::Zero();        ///< M0/(σ² t0²): a force per volume on the fluid at every step (a pressure gradient)
   } fluid;
   struct Raspberries {
     std::vector<std::string> species;  ///< empty: every species of the input
