@@ -33,7 +33,7 @@ def resistance_manifest(smoke):
         t_run, t_window, blocks = 60, 20, 5
     else:
         grid = {"d": [6.5, 11.5], "xi_bead": [10, 25, 50, 100, 200, 400, 600, 800, 1000], "L": [40, 50, 64]}
-        t_run, t_window, blocks = 2000, 200, 10
+        t_run, t_window, blocks = 4000, 200, 10
     steps = round(t_run / DT)
     return {
         "study": "lb_bead_resistance_sweep" + ("-smoke" if smoke else ""),
@@ -46,8 +46,8 @@ def resistance_manifest(smoke):
         + (f"R = 3.25, box 32, {t_run} t0 ({steps // 2} LB steps, about two of the slowest mode's decay times L^2/(4 pi^2 nu)): not steady; "
            f"the last {t_window} t0 averaged." if smoke else
            f"Decision: the grid of spec 60 D2 (R = 3.25 and 5.75; xi_bead 10 ... 1000) at boxes 50 and the checks 40 and 64; {t_run} t0 "
-           f"(over 15 decay times L^2/(4 pi^2 nu) of the largest box), the last {t_window} t0 (100 recordings) averaged. The diffusion part "
-           "D2b is not in this manifest yet."),
+           f"(about twelve relaxation times of the drag at the largest box, measured as 340 t0 at L = 64, docs/validation.md), the last "
+           f"{t_window} t0 (100 recordings) averaged. The diffusion part D2b is not in this manifest yet."),
         "replicas": 1,
         "grid": grid,
         "stages": [
@@ -81,18 +81,20 @@ for smoke in (True, False):
 
 
 def stokes_box_validation():
-    """The D2a drag of one raspberry at five box sizes, each run for ten decay times L^2/(4 pi^2 nu)
-    of the largest box: the mobility U/F against 1/L and its fitted intercept (docs/validation.md)."""
+    """The D2a drag of one raspberry at five box sizes, each run until steady (the drag relaxes with
+    a time constant of about L^2/(12 nu), 133 t0 at L = 40): the mobility U/F against 1/L and its
+    fitted intercept (docs/validation.md)."""
     m = resistance_manifest(False)
-    boxes, t_run, t_window = [24, 32, 40, 50, 64], 1300, 200
+    boxes, t_runs, t_window = [24, 32, 40, 50, 64], [1300, 1300, 1300, 4000, 4000], 200
     m["study"] = "lb_stokes_drag_box"
     m["description"] = ("Validation of D2a (docs/validation.md): the fixed raspberry sphere R = 3.25 at xi_bead = 1000 (nominal) in the "
-                        "deterministic fluid between walls moving at U (as lb_bead_resistance_sweep), boxes 24 ... 64, "
-                        f"{t_run} t0 each (ten decay times L^2/(4 pi^2 nu) of the largest box), the last {t_window} t0 averaged; "
+                        "deterministic fluid between walls moving at U (as lb_bead_resistance_sweep), boxes 24 ... 64, run for "
+                        f"{t_runs} t0 (over ten relaxation times of the drag, about L^2/(12 nu)), the last {t_window} t0 averaged; "
                         "the mobility U/F against 1/L with its fitted line (intercept 1/xi_0).")
-    m["grid"] = {"d": [6.5], "xi_bead": [1000], "L": boxes}
-    m["stages"][1]["params"]["steps"] = round(t_run / DT)
-    m["stages"][2]["params"]["window"] = {"from": t_run - t_window}
+    m["grid"] = {"d": [6.5], "xi_bead": [1000], "L": boxes, "steps": [round(t / DT) for t in t_runs], "from": [t - t_window for t in t_runs]}
+    m["zip"] = [["L", "steps", "from"]]
+    m["stages"][1]["params"]["steps"] = "${grid.steps}"
+    m["stages"][2]["params"]["window"] = {"from": "${grid.from}"}
     m["report"] = {"title": "D2a validation: drag against box size",
                    "scalars": [{"stage": "drag", "names": ["xi_t_over_6pi_eta_R", "R_eff_t", "mobility_t"], "caption": "per box"}],
                    "plots": [{"name": "mobility", "stage": "drag", "scalar": "mobility_t", "x": "L", "x_power": -1,
