@@ -20,12 +20,15 @@ tool::Description description() {
       tool::optional("kT", "number", 1, "temperature of the fluid and bead noise (energy unit); refused with fluid.thermal false"),
       tool::optional("fluid", "object", nullptr,
                      "{agrid (1), lb_steps (2), density (6.004), viscosity (0.8), bulk_relaxation (0), ghost_relaxation (0), thermal (true), "
-                     "initial_velocity ([0, 0, 0]), warmup_steps (1000)}: the D3Q19 fluid, in sigma, M0 and t0"),
+                     "initial_velocity ([0, 0, 0]), warmup_steps (1000), body_force ([0, 0, 0])}: the D3Q19 fluid, in sigma, M0 and t0"),
       tool::required("raspberries", "object",
                      "{species (default: every species), xi_bead (required), xi_bead_is_nominal (true), centre_couples (true), fixed (false), "
                      "coupling_velocity (with_half_force | momentum_only), allow_unstable (false)}: sphere and spheroid raspberries (spec 40 §4-§5)"),
       tool::optional("walls", "object", nullptr,
                      "{normal: x | y | z, velocity ([0, 0, 0])}: a bounce-back wall layer at node 0 along normal, moving tangentially (spec 40 §7.2)"),
+      tool::optional("pore", "object", nullptr,
+                     "{radius (required), wall_bead_radius (6.25), wall_bead_spacing (5), epsilon (1)}: a cylindrical pore along z through the "
+                     "box's centre, solid nodes beyond the radius and WCA wall beads repelling the inner layers (spec 40 §6; refused with walls)"),
       tool::optional("frames", "object", nullptr, "frame rules: every_steps, every_time, log_first_time + log_per_decade, log_steps"),
       tool::optional("observe_every", "integer", 100, "MD steps between observation rows (each the mean over its steps)"),
   };
