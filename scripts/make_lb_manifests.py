@@ -13,6 +13,7 @@ ROW = 200           # MD steps per recording (spec 40 §1: 2 t0)
 
 
 def write(name, manifest):
+    """manifests/<name>.json (name may hold a folder: validation/...)."""
     with open(os.path.join(OUT, f"{name}.json"), "w") as f:
         json.dump(manifest, f, indent=2, ensure_ascii=False)
         f.write("\n")
@@ -100,9 +101,7 @@ def stokes_box_validation():
                    "plots": [{"name": "mobility", "stage": "drag", "scalar": "mobility_t", "x": "L", "x_power": -1,
                               "theory": [{"kind": "fit_line", "label": "1/xi_0 + c_1 / L"}],
                               "xlabel": "1/L (1/sigma)", "ylabel": "U / F (t0/M0)", "title": "Mobility of the fixed raspberry against 1/L"}]}
-    with open(os.path.join(OUT, "validation", "lb_stokes_drag_box.json"), "w") as f:
-        json.dump(m, f, indent=2, ensure_ascii=False)
-        f.write("\n")
+    write("validation/lb_stokes_drag_box", m)
 
 
 stokes_box_validation()
@@ -140,9 +139,7 @@ def einstein_validation():
                    "scalars": [{"stage": "drag", "names": ["xi_t", "mobility_t"], "caption": "fixed raspberry in the driven periodic box"},
                                {"stage": "diffusion", "names": ["D_t", "D_r", "D_r_three_axis"], "caption": "free raspberry, the same box"}]},
     }
-    with open(os.path.join(OUT, "validation", "lb_einstein_periodic.json"), "w") as f:
-        json.dump(m, f, indent=2, ensure_ascii=False)
-        f.write("\n")
+    write("validation/lb_einstein_periodic", m)
 
 
 einstein_validation()
@@ -177,9 +174,7 @@ def periodic_drag_validation():
                               "theory": [{"kind": "fit_line", "label": "1/xi_0 + c_1 / L (Hasimoto: c_1 = -0.031337)"}],
                               "xlabel": "1/L (1/sigma)", "ylabel": "U / F (t0/M0)", "title": "Mobility of the fixed raspberry against 1/L"}]},
     }
-    with open(os.path.join(OUT, "validation", "lb_periodic_drag_box.json"), "w") as f:
-        json.dump(m, f, indent=2, ensure_ascii=False)
-        f.write("\n")
+    write("validation/lb_periodic_drag_box", m)
 
 
 periodic_drag_validation()
