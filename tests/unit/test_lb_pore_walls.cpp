@@ -44,7 +44,7 @@ double brute_force_energy(const State& s, const PoreWalls& walls) {
   return e;
 }
 
-double energy(const PoreWalls& walls, const State& s) {
+double energy(PoreWalls& walls, const State& s) {
   BodyForces f;
   f.reset(1);
   return walls.add(s, f);
@@ -62,7 +62,7 @@ TEST(PoreWalls, BeadGrid) {
 }
 
 TEST(PoreWalls, EnergyForceAndTorqueAgainstReferences) {
-  const PoreWalls walls(kPore, Box(Vec3(32, 32, 24)), sites());
+  PoreWalls walls(kPore, Box(Vec3(32, 32, 24)), sites());
   const Quat q = Quat(Eigen::AngleAxisd(0.7, Vec3(1, -2, 0.5).normalized()));
   // The centre 4.6 from the axis: beads up to 8.35 out, inside the WCA range of the wall beads.
   for (const Vec3& centre : {Vec3(20.6, 16.0, 23.5), Vec3(16.0, 11.2, 0.3), Vec3(13.0, 19.0, 11.0)}) {
@@ -89,7 +89,7 @@ TEST(PoreWalls, EnergyForceAndTorqueAgainstReferences) {
 }
 
 TEST(PoreWalls, ABodyAwayFromTheWallFeelsNothing) {
-  const PoreWalls walls(kPore, Box(Vec3(32, 32, 24)), sites());
+  PoreWalls walls(kPore, Box(Vec3(32, 32, 24)), sites());
   BodyForces f;
   f.reset(1);
   EXPECT_EQ(walls.add(body_at(Vec3(16.5, 15.5, 7), Quat::Identity()), f), 0.0);

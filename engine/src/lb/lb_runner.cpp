@@ -232,16 +232,15 @@ void LbRunner::build_pore(const std::string& config_file) {
 void LbRunner::forces(const State& s, BodyForces& out) {
   (*coupling_)(s, out);
   if (!pore_) return;
-  BodyForces walls;
-  walls.reset(s.particles.size());
-  pore_->add(s, walls);
+  pore_forces_.reset(s.particles.size());
+  pore_->add(s, pore_forces_);
   last_pore_force_ = Vec3::Zero();
   for (std::size_t i = 0; i < s.particles.size(); ++i) {
-    out.force[i] += walls.force[i];
-    out.torque[i] += walls.torque[i];
-    last_pore_force_ += walls.force[i];
+    out.force[i] += pore_forces_.force[i];
+    out.torque[i] += pore_forces_.torque[i];
+    last_pore_force_ += pore_forces_.force[i];
   }
-  out.energy += walls.energy;
+  out.energy += pore_forces_.energy;
 }
 
 LbRunner::LbRunner(State& state, const LbProtocol& protocol, const std::string& config_file, bool quiet)

@@ -52,10 +52,10 @@ Vec3 PoreWalls::bead_force(const Vec3& r, double& energy) const {
   return force;
 }
 
-double PoreWalls::add(const State& state, BodyForces& out) const {
+double PoreWalls::add(const State& state, BodyForces& out) {
   const Particles& p = state.particles;
   double energy = 0.0;
-  std::vector<Vec3> forces;
+  std::vector<Vec3>& forces = bead_forces_;
   for (std::size_t i = 0; i < p.size(); ++i) {
     const SiteBody& body = inner_[static_cast<std::size_t>(p.species[i])];
     if (body.size() == 0) continue;

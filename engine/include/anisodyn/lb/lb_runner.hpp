@@ -93,6 +93,7 @@ class LbRunner : public run::FieldlessClient {
   std::unique_ptr<LbFluid> fluid_;
   std::unique_ptr<BodyFluidCoupling> coupling_;
   std::unique_ptr<PoreWalls> pore_;  // null: no pore
+  BodyForces pore_forces_;           // the wall's part of the last forces
   Vec3 last_pore_force_ = Vec3::Zero();
   std::unique_ptr<RigidBodyNve> integrator_;
   run::ProductionRunner production_;

@@ -31,7 +31,7 @@ class PoreWalls {
   PoreWalls(const PoreParameters& params, const Box& box, SiteTable inner_sites);
 
   /// Adds the walls' force and torque on every body to out; returns the potential energy.
-  double add(const State& state, BodyForces& out) const;
+  double add(const State& state, BodyForces& out);
 
   /// Distance of a point from the pore axis.
   double radial_distance(const Vec3& r) const;
@@ -52,6 +52,7 @@ class PoreWalls {
   std::size_t rings_, per_ring_;
   double dz_, sigma_, cutoff_;
   std::vector<double> cos_, sin_;  ///< of each bead's angle on a ring
+  std::vector<Vec3> bead_forces_;  ///< one body's beads, kept from call to call
 };
 
 }  // namespace anisodyn::lb
