@@ -191,6 +191,28 @@ Vec3 LbFluid::velocity(std::size_t node, bool with_half_force) const {
   return (with_half_force ? Vec3(j + 0.5 * force_at(node)) : j) / m[0];
 }
 
+std::pair<double, std::size_t> LbFluid::kinetic_sum() const {
+  double sum = 0.0;
+  std::size_t fluid = 0;
+  for (std::size_t n = 0; n < nodes_; ++n) {
+    if (solid_[n]) continue;
+    const auto m = conserved_modes(n);
+    const Vec3 u = Vec3(Vec3(m[1], m[2], m[3]) + 0.5 * force_at(n)) / m[0];
+    sum += m[0] * u.squaredNorm();
+    ++fluid;
+  }
+  return {sum, fluid};
+}
+
+Vec3 LbFluid::pending_force_total() const {
+  Vec3 sum = Vec3::Zero();
+  for (const std::vector<double>* component : {&fx_, &fy_, &fz_}) {
+    const int k = static_cast<int>(component == &fx_ ? 0 : component == &fy_ ? 1 : 2);
+    for (std::size_t n = 0; n < nodes_; ++n) sum[k] += (*component)[n];
+  }
+  return sum;
+}
+
 double LbFluid::total_mass() const {
   double sum = 0.0;
   for (std::size_t n = 0; n < nodes_; ++n)

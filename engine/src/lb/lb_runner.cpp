@@ -323,12 +323,7 @@ void LbRunner::add_to_row() {
 }
 
 Vec3 LbRunner::fluid_momentum() const {
-  const std::vector<double> pending = fluid_->pending_forces();
-  const std::size_t n = fluid_->nodes();
-  Vec3 sum = fluid_->total_momentum();
-  for (std::size_t k = 0; k < 3; ++k)
-    for (std::size_t i = 0; i < n; ++i) sum[static_cast<int>(k)] += pending[k * n + i];
-  return sum * (units_.agrid / units_.lb_time_step());
+  return (fluid_->total_momentum() + fluid_->pending_force_total()) * (units_.agrid / units_.lb_time_step());
 }
 
 void LbRunner::observe(io::H5mdWriter& out, std::int64_t step, double t) {
@@ -343,13 +338,8 @@ void LbRunner::observe(io::H5mdWriter& out, std::int64_t step, double t) {
     out.append_observable("colloid_temperature_translational", step, t, row_.translational / (3.0 * n * steps));
     out.append_observable("colloid_temperature_rotational", step, t, row_.rotational / (3.0 * n * steps));
   }
-  double energy = 0.0, nodes = 0.0;
-  for (std::size_t n = 0; n < fluid_->nodes(); ++n) {
-    if (fluid_->solid(n)) continue;
-    energy += fluid_->density(n) * fluid_->velocity(n).squaredNorm();
-    nodes += 1.0;
-  }
-  out.append_observable("fluid_temperature", step, t, energy / (3.0 * nodes) / units_.energy_to_lattice());
+  const auto [energy, nodes] = fluid_->kinetic_sum();
+  out.append_observable("fluid_temperature", step, t, energy / (3.0 * static_cast<double>(nodes)) / units_.energy_to_lattice());
   const Vec3 fluid = fluid_momentum();
   Vec3 bodies = Vec3::Zero(), pending = Vec3::Zero();
   for (std::size_t i = 0; i < p.size(); ++i) {

@@ -22,6 +22,11 @@ PoreWalls::PoreWalls(const PoreParameters& params, const Box& box, SiteTable inn
     cos_.push_back(std::cos(phi));
     sin_.push_back(std::sin(phi));
   }
+  for (const SiteBody& body : inner_) {
+    double reach = 0.0;
+    for (const Vec3& d : body.offsets) reach = std::max(reach, d.norm());
+    reach_.push_back(reach);
+  }
   sigma_ = params.inner_bead_radius + params.wall_bead_radius;
   cutoff_ = std::pow(2.0, 1.0 / 6.0) * sigma_;
 }
@@ -62,9 +67,7 @@ double PoreWalls::add(const State& state, BodyForces& out) {
     const Mat3 rot = p.orientation(i).toRotationMatrix();
     const Vec3 centre = p.position(i);
     // A body far from the wall feels nothing: skip its beads.
-    double reach = 0.0;
-    for (const Vec3& d : body.offsets) reach = std::max(reach, d.norm());
-    if (radial_distance(centre) + reach <= wall_radius_ - cutoff_) continue;
+    if (radial_distance(centre) + reach_[static_cast<std::size_t>(p.species[i])] <= wall_radius_ - cutoff_) continue;
     forces.assign(body.size(), Vec3::Zero());
     for (std::size_t k = 0; k < body.size(); ++k) forces[k] = bead_force(centre + rot * body.offsets[k], energy);
     const Wrench w = reduce_site_forces(body, p.orientation(i), std::span<const Vec3>(forces));

@@ -18,6 +18,7 @@
 // n = x + n_x (y + n_y z); node centres are at (x + ½, y + ½, z + ½).
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "anisodyn/core/node_noise.hpp"
@@ -78,6 +79,11 @@ class LbFluid {
   /// j/ρ alone (with_half_force false); a solid node's is its wall velocity (a bead near a wall
   /// interpolates towards it, and the impulse it gives a solid node goes into the wall).
   Vec3 velocity(std::size_t node, bool with_half_force = true) const;
+  /// Σ ρ u² over the fluid nodes (u as velocity(): with the half force) and their number: the
+  /// fluid's temperature in one pass.
+  std::pair<double, std::size_t> kinetic_sum() const;
+  /// Σ of the force densities pending for the next step (add_force), over every node.
+  Vec3 pending_force_total() const;
   /// Σ ρ and Σ j over the fluid nodes.
   double total_mass() const;
   Vec3 total_momentum() const;

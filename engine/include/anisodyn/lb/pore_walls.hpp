@@ -46,6 +46,7 @@ class PoreWalls {
 
   PoreParameters params_;
   SiteTable inner_;
+  std::vector<double> reach_;  ///< per species: the farthest inner bead from the centre
   Vec3 axis_;            ///< a point on the axis (x, y of the box centre)
   double length_;        ///< the box along z
   double wall_radius_;   ///< R_pore + r_p
