@@ -277,7 +277,8 @@ def sphere_sweep_manifest(smoke):
         + "one free raspberry sphere in a periodic cubic box of the fluctuating D3Q19 fluid (rho = 6.004, nu = 0.8, kT = 1; xi_bead nominal, "
           "scaled by s = 0.8/5.6757), 1000 MD steps of fluid warm-up, recordings every 200 MD steps (2 t0); lab-frame D_t (MSD slope / 6) "
           "and its Hasimoto 1/L extrapolation (the fit line's intercept is D_0), D_r of the reference bead (4 tau estimator), three-axis and "
-          "body-axis D_r (anisodyn-lb-diffusion). "
+          "body-axis D_r (anisodyn-lb-diffusion); the report's frictions xi^t = kT/D_0, xi^r = kT/D_r (mean over the boxes) and, with two "
+          "radii or more, the calibration lines xi^t = m_t R + b_t, xi^r = m_r R^3 + b_r per xi_bead (spec 40 §8.5). "
         + (f"R = 2.25, xi_bead = 50, boxes 16, 20, 24, {replicas} runs of {steps} MD steps each; the translational fit over lags 4 ... 40 t0 "
            "(spec 40's 0.5 ... 2 L^2/nu is beyond the smoke's runs)." if smoke else
            f"Boxes L = round(L_ell R/4.25) for spec 40 §7.1's eight L_ell (Decision); {RECORDINGS} recordings per box in {RUNS} runs; the "
@@ -298,6 +299,7 @@ def sphere_sweep_manifest(smoke):
                            for s in ("D_r", "D_r_three_axis", "D_r_body_x", "D_r_body_y", "D_r_body_z")],
                 "xlabel": "L (sigma)", "ylabel": "D_r (1/t0)", "title": "Rotational diffusion: lab estimators and the body axes"
                 + ("" if smoke else " (R = 4.25, xi_bead = 1000)")}],
+            "raspberry": {"stage": "diffusion", "box": "L", "calibration": {"fit": "xi_bead"}},
         },
     }
     if not smoke:
@@ -339,10 +341,12 @@ def ellipsoid_manifest(smoke):
         + "one free constant-volume raspberry spheroid (a b^2 = 4.25^3, symmetry axis along body x) in the fluctuating fluid, xi_bead = 1000 "
           "nominal; body-frame D_t,i and D_r,i by quaternion projection (anisodyn-lb-diffusion), their anisotropies D_ax/D_perp against "
           "Happel-Brenner and Perrin (spec 40 §8.6; no radius calibration needed). "
-        + (f"phi = 2 (a = 6.746, b = 3.373), box 24, {replicas} runs of {steps} MD steps; the translational fit over lags 4 ... 40 t0."
+        + (f"phi = 2 (a = 6.746, b = 3.373), box 24, {replicas} runs of {steps} MD steps; the translational fit over lags 4 ... 40 t0; the report's factors A, B, "
+           "E-L invert the Stokes lines 6 pi eta R and 8 pi eta R^3 (no calibration) with D_0 from Hasimoto's slope at the one box."
            if smoke else
            f"The 16 aspect ratios of spec 40 §5.3, boxes of spec 40 §7.1 without those below 2a + 4 (dropped: {dropped}); {RECORDINGS} "
-           f"recordings per box in {RUNS} runs. The factors A, B, E-L through the D3 calibration lines are not in this manifest yet."),
+           f"recordings per box in {RUNS} runs. The report inverts D3's calibration lines at xi_bead = 1000 "
+           "(results/lb_sphere_radius_sweep/report/raspberry_calibration.json: run D3 first) into the factors A, B, E-L (spec 40 §8.5-8.6)."),
         "replicas": replicas,
         "grid": grid,
         "zip": [["a", "b", "L"]],
@@ -352,6 +356,8 @@ def ellipsoid_manifest(smoke):
             "scalars": [{"stage": "diffusion", "names": ["D_t_body_*", "D_r_body_*", "D_t_axial_over_perp", "D_r_axial_over_perp", "alpha"],
                          "caption": "body-frame diffusion coefficients (run's units) and their anisotropies"}],
             "plots": ratio_plots,
+            "raspberry": {"stage": "diffusion", "box": "L", "calibration": "stokes" if smoke else
+                          {"file": "lb_sphere_radius_sweep/report/raspberry_calibration.json", "xi_bead": 1000}},
         },
     }
 

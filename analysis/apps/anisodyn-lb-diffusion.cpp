@@ -176,7 +176,8 @@ int main(int argc, char** argv) {
 
     const nlohmann::json details = {{"runs", samples.count()}, {"error", "jackknife over runs"}, {"translation_window", {t_min, t_max}},
                                     {"rotation_window", {0.0, rotation_max}}, {"box", facts.box}, {"radius", facts.radius},
-                                    {"friction_scale", facts.friction_scale}, {"reference_angle", facts.reference_angle},
+                                    {"semi_axes", {facts.semi_axes.x(), facts.semi_axes.y(), facts.semi_axes.z()}},
+                                    {"kT", facts.kT}, {"eta", facts.eta}, {"friction_scale", facts.friction_scale}, {"reference_angle", facts.reference_angle},
                                     {"rotation_convention", paper ? "paper" : "default"}};
     for (const Quantity& q : quantities) {
       const Estimate e = jackknife(samples, [&](const std::vector<double>& flat) { return q.value(BodyLagCurves::unflatten(flat)); });

@@ -325,6 +325,39 @@ def check_series_entries(item, p, stages, grid):
                 raise ManifestError(f"{q}.x_scale", "no 'x_scale': it has no effect with at_x (the point is drawn at at_x)")
 
 
+def validate_raspberry(item, m):
+    """report.raspberry (raspberry.py): an lb-diffusion stage, the grid variable of the box, and the
+    calibration: {"fit": grid variable} (spheres), "stokes", or {"file": path, "xi_bead": number}."""
+    p = "report.raspberry"
+    if not isinstance(item, dict):
+        raise ManifestError(p, "an object {stage, box, calibration}", item)
+    check_keys(item, {"stage", "box", "calibration"}, p, "in the raspberry block")
+    tools = {st["name"]: st["tool"] for st in m["stages"]}
+    if tools.get(item.get("stage")) != "lb-diffusion":
+        raise ManifestError(f"{p}.stage", "the name of an lb-diffusion stage of this manifest", item.get("stage"))
+    grid = m.get("grid", {})
+    if item.get("box") not in grid:
+        raise ManifestError(f"{p}.box", "the grid variable that sets the box edge (" + (", ".join(grid) or "the manifest has none") + ")",
+                            item.get("box"))
+    cal = item.get("calibration")
+    q = f"{p}.calibration"
+    if cal == "stokes":
+        return
+    if not isinstance(cal, dict):
+        raise ManifestError(q, '{"fit": grid variable} (fit the sphere lines), "stokes", or {"file": path, "xi_bead": number}', cal)
+    if "fit" in cal:
+        check_keys(cal, {"fit"}, q, "with fit")
+        if cal["fit"] not in grid or cal["fit"] == item["box"]:
+            raise ManifestError(f"{q}.fit", "a grid variable other than the box: one calibration line per value (xi_bead)", cal["fit"])
+        return
+    check_keys(cal, {"file", "xi_bead"}, q, "with file")
+    if not isinstance(cal.get("file"), str) or not cal["file"]:
+        raise ManifestError(f"{q}.file", "the path of a sphere study's raspberry_calibration.json (relative to the results folder)",
+                            cal.get("file"))
+    if not is_number(cal.get("xi_bead")):
+        raise ManifestError(f"{q}.xi_bead", "a number: the bead friction whose calibration line to invert", cal.get("xi_bead"))
+
+
 def validate_report(m):
     """The report block's structure (names of tables, columns and scalars are checked when the
     report is written, since they exist only in the outputs)."""
@@ -332,8 +365,10 @@ def validate_report(m):
     if not isinstance(rep, dict):
         raise ManifestError("report", "an object {title, scalars, plots}", rep)
     for k in rep:
-        if k not in ("title", "scalars", "plots"):
-            raise ManifestError(f"report.{k}", "one of title, scalars, plots (unknown key)")
+        if k not in ("title", "scalars", "plots", "raspberry"):
+            raise ManifestError(f"report.{k}", "one of title, scalars, plots, raspberry (unknown key)")
+    if "raspberry" in rep:
+        validate_raspberry(rep["raspberry"], m)
     stages = {st["name"] for st in m["stages"]}
     grid = m.get("grid", {})
     for key in ("scalars", "plots"):

@@ -13,6 +13,7 @@ import sys
 import time
 
 from .expand import grid_points
+from .fits import weighted_line
 from .manifest import format_value
 
 EXIT_FAILED = 3
@@ -139,9 +140,18 @@ class Report:
             lines += ["## Plots", ""]
         for k, plot in enumerate(plots):
             lines += self.plot(plot, k)
+        if "raspberry" in self.spec:
+            lines += self.raspberry(self.spec["raspberry"])
         lines += self.diffusion_sources()
         lines += self.all_scalars()
         return lines
+
+    def raspberry(self, spec):
+        from .raspberry import RaspberryError, Section
+        try:
+            return Section(spec, self.stage_jobs(spec["stage"], "report.raspberry"), self.path, self.out, self.campaign).write()
+        except (RaspberryError, ValueError) as e:
+            raise ReportError(f"report.raspberry: {e}")
 
     def diffusion_sources(self):
         """Where each species' diffusion tensors came from: the engine outputs' provenance records the
@@ -399,22 +409,17 @@ class Report:
         return list(a[:, 0])
 
     def fit_line(self, ax, t, where):
-        """The weighted least-squares line c0 + c1 x through every point the scalar plot drew (weights 1/SE²,
-        or equal when an SE is missing), with the parameters' standard errors from the covariance, scaled by
-        the reduced chi² when it exceeds 1. Drawn, and noted under the plot."""
+        """The weighted least-squares line c0 + c1 x through every point the scalar plot drew (fits.weighted_line:
+        weights 1/SE², or equal when an SE is missing), drawn, and noted under the plot."""
         import numpy as np
         if len(self.drawn) < 3:
             raise ReportError(f"{where}.theory: a fitted line needs at least 3 points, the plot has {len(self.drawn)}")
         x, y, e = (np.array(c, dtype=float) for c in zip(*self.drawn))
-        w = 1.0 / e ** 2 if np.all(np.isfinite(e) & (e > 0)) else np.ones_like(x)
-        A = np.vstack([np.ones_like(x), x]).T
-        cov = np.linalg.inv(A.T @ (A * w[:, None]))
-        c = cov @ (A.T @ (w * y))
-        chi2 = float(np.sum(w * (y - A @ c) ** 2) / (len(x) - 2))
-        err = np.sqrt(np.diag(cov) * max(1.0, chi2))
+        fit = weighted_line(x, y, e)
         line = np.linspace(min(0.0, x.min()), x.max(), 100)
-        text = f"fit: c0 = {c[0]:.4g} ± {err[0]:.2g}, c1 = {c[1]:.4g} ± {err[1]:.2g} ({len(x)} points, reduced chi2 {chi2:.2g})"
-        ax.plot(line, c[0] + c[1] * line, color="k", lw=1, ls=":", label=t.get("label", text))
+        text = (f"fit: c0 = {fit.c0:.4g} ± {fit.c0_se:.2g}, c1 = {fit.c1:.4g} ± {fit.c1_se:.2g} ({len(x)} points, "
+                f"reduced chi2 {fit.chi2:.2g})")
+        ax.plot(line, fit.c0 + fit.c1 * line, color="k", lw=1, ls=":", label=t.get("label", text))
         self.notes.append(text)
 
     def axis_value(self, var, value):

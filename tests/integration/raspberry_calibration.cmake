@@ -1,0 +1,1 @@
+anisodyn_add_script_test(raspberry_calibration raspberry_calibration.py)
