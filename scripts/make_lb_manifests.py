@@ -362,6 +362,63 @@ def ellipsoid_manifest(smoke):
     }
 
 
+# --- D6: the viscosity scaling of spec 40 §1.1 ---------------------------------------------------
+NU_WATER = 5.6757
+
+
+def viscosity_manifest(smoke):
+    # The water fluid takes xi_bead unscaled (s = 1). At dt = 0.01 its dt sum(xi)/m is 1/s = 7.1 times
+    # the scaled run's (2.85 for R = 4.25: the explicit coupling diverges; anisodyn-lb refuses it), so
+    # the water runs take dt = s * 0.01 (2/1420 t0, so that a recording is 1420 steps = 2 t0): the same
+    # stability number and lattice relaxation time as the scaled runs, over the same simulated time.
+    frame_steps = [1420, ROW]  # even (whole LB steps), within 0.1% of 2 t0 / (s 0.01)
+    dts = [2.0 / frame_steps[0], DT]
+    if smoke:
+        t_run, boxes, replicas, fit = 20.0, [24], 2, {"t_min": 2, "t_max": 10}
+    else:
+        t_run, boxes, replicas, fit = RECORDINGS // RUNS * ROW * DT, [32, 48, 64], RUNS, None
+    grid = {"nu": [NU_WATER, NU_SIM], "dt": dts, "steps": [round(t_run / dt) for dt in dts], "frame_steps": frame_steps,
+            "warmup": [5 * n for n in frame_steps], "L": boxes}
+    stages = diffusion_stages({"type": "sphere", "diameter": 8.5}, 101, 1000, "${grid.steps}", fit, None)
+    lb = stages[1]["params"]
+    lb.update({"time_step": "${grid.dt}", "observe_every": "${grid.frame_steps}", "frames": {"every_steps": "${grid.frame_steps}"},
+               "fluid": {"viscosity": "${grid.nu}", "warmup_steps": "${grid.warmup}"}})
+    return {
+        "study": "lb_viscosity_scaling" + ("-smoke" if smoke else ""),
+        "description": ("D6 smoke: " if smoke else "Study D6 (spec 60 D6, spec 40 §1.1; Ustach & Faller): ")
+        + "one free raspberry sphere R = 4.25 (xi_bead = 1000 nominal) in the fluctuating fluid of water's viscosity nu = 5.6757 (xi_bead "
+          "unscaled, s = 1) and of spec 40's nu = 0.8 (xi_bead scaled by s = 0.8/5.6757); the frictions xi^t/(6 pi eta R) (D_0 from the "
+          "Hasimoto line over the boxes) and xi^r/(8 pi eta R^3) in each fluid's own units (the ratios are the same in water units), "
+          "and the stability number dt sum(xi_bead)/m of each run. Decision: at dt = 0.01 the water run's stability number is 2.85 "
+          "(the coupling diverges), so the water runs take dt = 2/1420 t0 (s 0.01 within 0.1%), the same stability number and lattice "
+          "relaxation time as the scaled runs, over the same simulated time (7.1 times the steps); warm-up 10 t0 in both. "
+        + (f"Box 24, {replicas} runs of {t_run:g} t0 per fluid; D_0 from Hasimoto's slope at the one box; the translational fit "
+           "over lags 2 ... 10 t0." if smoke else
+           f"Boxes 32, 48, 64; {RECORDINGS} recordings (2 t0 each) per box in {RUNS} runs (Decision: D3's run length); the translational fit over "
+           "spec 40 §8.1's window 0.5 ... 2 L^2/nu."),
+        "replicas": replicas,
+        "grid": grid,
+        "zip": [["nu", "dt", "steps", "frame_steps", "warmup"]],
+        "stages": stages,
+        "report": {
+            "title": "D6" + (" smoke" if smoke else "") + ": viscosity scaling",
+            "scalars": [{"stage": "diffusion", "names": ["D_t", "D_r", "xi_t_over_6pi_eta_R", "xi_r_over_8pi_eta_R3", "xi_t_water",
+                                                         "xi_r_water", "stability"],
+                         "caption": "per fluid and box: D (run's units), the Stokes ratios of the box, frictions in water units, "
+                                    "dt sum(xi_bead)/m"}],
+            "plots": [{"name": f"{kind}_ratio_pairs", "stage": "diffusion", "scalar": scalar, "x": "nu", "series": "L",
+                       "theory": [{"kind": "constant", "value": 1, "label": label}],
+                       "xlabel": "nu (sigma^2/t0): water 5.6757, scaled 0.8", "ylabel": scalar,
+                       "title": f"{'Translational' if kind == 't' else 'Rotational'} friction in the two fluids (per box)"}
+                      for kind, scalar, label in (("t", "xi_t_over_6pi_eta_R", "Stokes"), ("r", "xi_r_over_8pi_eta_R3", "SED"))],
+            "raspberry": {"stage": "diffusion", "box": "L"},
+        },
+    }
+
+
+write("lb_viscosity_scaling-smoke", viscosity_manifest(True))
+write("lb_viscosity_scaling", viscosity_manifest(False))
+
 for smoke in (True, False):
     write("lb_sphere_radius_sweep" + ("-smoke" if smoke else ""), sphere_sweep_manifest(smoke))
     write("lb_ellipsoid_sweep" + ("-smoke" if smoke else ""), ellipsoid_manifest(smoke))

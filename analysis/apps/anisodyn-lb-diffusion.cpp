@@ -30,7 +30,7 @@ tool::Description description() {
        tool::optional("rotation_convention", "string", "default",
                       "default (D_r = <dTheta^2>/(4 tau), body axes /(2 tau)) | paper (6 tau, and 3 tau for the body axes: 2/3 of the true D_r)")},
       "tables lag_curves (per lag: lab MSD, reference-vector and three-axis angle MSDs, body-frame MSDs per axis, with errors); scalars D_t, "
-      "D_t_hasimoto, D_r, D_r_three_axis, D_t_body_x/y/z, D_r_body_x/y/z, their ratios and frictions in water units");
+      "D_t_hasimoto, D_r, D_r_three_axis, D_t_body_x/y/z, D_r_body_x/y/z, their ratios and frictions in water units, alpha and the run's stability number");
 }
 
 /// What the run's parameters and summary say: its fluid, units, body and reference bead.
@@ -38,6 +38,7 @@ struct RunFacts {
   double kT = 1.0, eta = 0.0, nu = 0.0, friction_scale = 1.0, box = 0.0, radius = 0.0;
   Vec3 semi_axes = Vec3::Zero(), reference = Vec3::Zero();
   double reference_angle = 0.0;
+  double stability = 0.0;  // dt * sum(xi_bead) / m of the run (spec 40 §4)
 };
 
 RunFacts run_facts(const std::string& path) {
@@ -62,6 +63,7 @@ RunFacts run_facts(const std::string& path) {
   f.semi_axes = v(body.at("semi_axes"));
   f.reference = v(body.at("reference_offset"));
   f.reference_angle = body.at("reference_angle").get<double>();
+  f.stability = body.at("stability").get<double>();
   f.radius = std::cbrt(f.semi_axes.prod());
   const State first = reader.read_frame(0);
   const Vec3 edges = first.box.edges();
@@ -184,6 +186,7 @@ int main(int argc, char** argv) {
       run.out.scalar({q.name, e.value, e.error, q.units, q.definition, details});
     }
     run.out.scalar({"alpha", facts.reference_angle, 0.0, "rad", "the reference bead's polar angle from the body symmetry axis (body x)", details});
+    run.out.scalar({"stability", facts.stability, 0.0, "1", "dt * sum(xi_bead) / m of the run (spec 40 §4; the explicit coupling is stable at <= 1)", details});
 
     Table& t = run.out.table("lag_curves", "spec 40 §8: mean squares per lag over every origin, mean over the runs");
     t.add("lag", "t0", "lag time", lag);

@@ -326,8 +326,8 @@ def check_series_entries(item, p, stages, grid):
 
 
 def validate_raspberry(item, m):
-    """report.raspberry (raspberry.py): an lb-diffusion stage, the grid variable of the box, and the
-    calibration: {"fit": grid variable} (spheres), "stokes", or {"file": path, "xi_bead": number}."""
+    """report.raspberry (raspberry.py): an lb-diffusion stage, the grid variable of the box, and
+    optionally the calibration: {"fit": grid variable} (spheres), "stokes", or {"file": path, "xi_bead": number}."""
     p = "report.raspberry"
     if not isinstance(item, dict):
         raise ManifestError(p, "an object {stage, box, calibration}", item)
@@ -341,7 +341,7 @@ def validate_raspberry(item, m):
                             item.get("box"))
     cal = item.get("calibration")
     q = f"{p}.calibration"
-    if cal == "stokes":
+    if cal is None or cal == "stokes":  # no calibration: the frictions per body only
         return
     if not isinstance(cal, dict):
         raise ManifestError(q, '{"fit": grid variable} (fit the sphere lines), "stokes", or {"file": path, "xi_bead": number}', cal)

@@ -204,10 +204,10 @@ class Section:
                  f"-{HASIMOTO} kT/(6πη)), D_r the weighted mean over the boxes (§8.2), ξ^t = kT/D_0, ξ^r = kT/D_r; units of the "
                  "simulated fluid (η = ρν of the run).", ""]
         lines += self.body_table()
-        cal = self.spec["calibration"]
+        cal = self.spec.get("calibration")
         if isinstance(cal, dict) and "fit" in cal:
             lines += self.calibration_fit(cal["fit"])
-        else:
+        elif cal is not None:
             lines += self.factors(cal)
         return lines
 
