@@ -362,6 +362,47 @@ def ellipsoid_manifest(smoke):
     }
 
 
+# --- D1: the fluid checks (spec 40 §2.5, §3) -----------------------------------------------------
+def fluid_checks_manifest(smoke):
+    lb_steps = 5000 if smoke else 50_000
+    return {
+        "study": "lb_fluid_checks" + ("-smoke" if smoke else ""),
+        "description": ("D1 smoke: " if smoke else "Study D1 (spec 60 D1, spec 40 §2.5 and §3): ")
+        + "the checks of the LB fluid in lattice units at spec 40's parameters (rho = 6.004, nu = 0.016, i.e. 0.8 sigma^2/t0, kT = 4e-4; "
+          "anisodyn-lb-checks): every mode's mean square and <u^2> per node against mu rho b_k and kT/rho on a 24^3 lattice "
+          f"({lb_steps} LB steps after 1000 of warm-up, 10 blocks); the viscosity from shear-wave decay at nu = 0.016, water's 0.1135 and "
+          "tau = 1; plug flow between walls moving together at 2.20 m/s; total momentum and mass with 16 free beads point-coupled to the "
+          "thermal fluid (xi = 0.56, m = 10) and their temperature; a bead pulled through a 12^3 fluid against Ahlrichs-Dunweg's "
+          "1/xi + 1/(25 eta a), at a node, a cell centre, an off-lattice point and averaged over 16 random points, with spec 40's coupling "
+          "velocity u = (j + f/2)/rho and with Ahlrichs-Dunweg's u = j/rho. "
+        + ("Spec 60's smoke size: a block (500 steps) is shorter than the slowest relaxation (912 steps), so the mode errors are too small."
+           if smoke else "Decision: 5e4 LB steps, so that a block spans five slowest relaxations (912 steps) and the block errors hold."),
+        "replicas": 1,
+        "stages": [{"name": "checks", "tool": "lb-checks", "params": {"box": 24, "lb_steps": lb_steps, "seed": 11}}],
+        "report": {
+            "title": "D1" + (" smoke" if smoke else "") + ": checks of the LB fluid",
+            "scalars": [{"stage": "checks", "names": ["u2_ratio", "worst_mode_pull", "shear_wave_*", "plug_flow_deviation", "momentum_change",
+                                                      "mass_change", "bead_temperature"],
+                         "caption": "thermalisation, viscosity, plug flow, conservation with beads (targets: 1, < 3, 1, 0, round-off, round-off, "
+                                    "1/(1 - xi h/2m) = 1.0142)"},
+                        {"stage": "checks", "names": ["mobility_over_AD_*"],
+                         "caption": "pulled bead's mobility over Ahlrichs-Dunweg's formula with g = 25 (the g measured is in the details)"}],
+            "plots": [{"name": "modes", "stage": "checks", "table": "modes", "x": "mode", "y": ["ratio"],
+                       "theory": [{"kind": "constant", "value": 1, "label": "target (mu rho b_k; kT/rho for u)"}],
+                       "xlabel": "mode k (19: u per component)", "ylabel": "<m_k^2> / target", "title": "Thermalisation of every mode"},
+                      {"name": "bead_mobility", "stage": "checks", "table": "bead_mobility", "x": "node_distance",
+                       "y": ["ratio_half_force", "ratio_momentum_only"],
+                       "theory": [{"kind": "constant", "value": 1, "label": "Ahlrichs-Dunweg, g = 25"}],
+                       "xlabel": "distance of the bead from the nearest node centre", "ylabel": "mobility / Ahlrichs-Dunweg's",
+                       "title": "Pulled bead: u = (j + f/2)/rho (spec 40) and u = j/rho"}],
+        },
+    }
+
+
+write("lb_fluid_checks-smoke", fluid_checks_manifest(True))
+write("lb_fluid_checks", fluid_checks_manifest(False))
+
+
 # --- D6: the viscosity scaling of spec 40 §1.1 ---------------------------------------------------
 NU_WATER = 5.6757
 

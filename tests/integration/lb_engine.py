@@ -6,7 +6,9 @@
 3. a raspberry spheroid held fixed between moving walls (deterministic fluid, spec 40 §7.2): the
    drag points along the wall velocity, with no steady force across it, and the spheroid's drag
    along its long axis is below the sphere's of the same volume (Perrin: 0.95x at aspect 2);
-4. bad input exits 2, names the file and JSON path, writes nothing.
+4. bad input exits 2, names the file and JSON path, writes nothing;
+5. a raspberry in a pore stays off the wall;
+6. anisodyn-lb-checks' bad input, likewise.
 """
 import json
 import os
@@ -184,3 +186,11 @@ for what, cfg, start, path in bad_pore:
                                 "--output", "bad.h5"], [path, "bad.json"])
         continue
     expect_bad_input(what, [tool("anisodyn-lb"), "--config", write("bad.json", cfg), "--input", start, "--output", "bad.h5"], [path, ("bad.json", start)])
+
+# 6. anisodyn-lb-checks (study D1) refuses what it cannot run, writing nothing (the smoke runs it).
+for what, cfg, path in (("a lattice too small", {"box": 3}, "box"), ("too few steps for 10 blocks", {"lb_steps": 50}, "lb_steps"),
+                        ("one mobility position", {"mobility_positions": 1}, "mobility_positions"),
+                        ("an unknown key", {"viscosity": 0.1}, "viscosity")):
+    expect_bad_input(what, [tool("anisodyn-lb-checks"), "--config", write("bad.json", cfg), "--output", "bad.h5"], [path, "bad.json"])
+expect_bad_input("an input file", [tool("anisodyn-lb-checks"), "--config", write("bad.json", {}), "--input", sphere_start, "--output", "bad.h5"],
+                 ["--input"])

@@ -14,10 +14,13 @@
 #endif
 
 #include "anisodyn/core/error.hpp"
+#include "anisodyn/lb/fluid_checks.hpp"
 #include "anisodyn/lb/lb_fluid.hpp"
 
 using namespace anisodyn;
 using namespace anisodyn::lb;
+using anisodyn::lb::checks::channel_profile;
+using anisodyn::lb::checks::shear_wave_viscosity;
 
 TEST(D3Q19, TheModeBasisIsOrthogonalWithTheSpecsNorms) {
   // 36 w_i is 12, 2 or 1, and 36 b_k an integer: Σ_i 36 w_i e_ki e_li = 36 b_k δ_kl in integers.
@@ -142,29 +145,6 @@ TEST(LbFluid, OneAndTwoThreadsGiveTheSameBits) {
 #endif
 }
 
-namespace {
-
-/// ν from the decay of a shear wave u_x = U sin(k z) on a 1 × 1 × L lattice: the amplitude's
-/// logarithm fitted against t (least squares) over [t0, t1].
-double shear_wave_viscosity(double nu, int length, int t0, int t1) {
-  LbFluid fluid({1, 1, length}, LbParameters{1.0, nu, 0.0, 0.0, 0.0, 1});
-  const double k = 2.0 * M_PI / length, amplitude = 1e-4;
-  for (int z = 0; z < length; ++z) fluid.set_equilibrium(fluid.node(0, 0, z), 1.0, Vec3(amplitude * std::sin(k * (z + 0.5)), 0, 0));
-  double st = 0, sl = 0, stt = 0, stl = 0, count = 0;
-  for (int t = 0; t <= t1; ++t) {
-    if (t >= t0) {
-      double a = 0.0;
-      for (int z = 0; z < length; ++z) a += fluid.velocity(fluid.node(0, 0, z)).x() * std::sin(k * (z + 0.5));
-      const double l = std::log(2.0 * a / length);
-      st += t, sl += l, stt += double(t) * t, stl += t * l, ++count;
-    }
-    fluid.step();
-  }
-  const double slope = (count * stl - st * sl) / (count * stt - st * st);
-  return -slope / (k * k);
-}
-
-}  // namespace
 
 TEST(LbFluid, AShearWaveDecaysWithTheViscosity) {
   // Spec 40's ν = 0.016 (τ = 0.548), ν = 1/6 (τ = 1) and ν = 0.5; about one e-fold each, after a
@@ -180,23 +160,6 @@ TEST(LbFluid, AShearWaveDecaysWithTheViscosity) {
   }
 }
 
-namespace {
-
-/// A channel 1 × (h + 2) × 1: solid rows y = 0 and y = h + 1 (walls at y = 1 and y = h + 1),
-/// moving along z with the given velocities, a body force g along z, run to steady state.
-std::vector<double> channel_profile(int h, double nu, double bottom, double top, double g) {
-  LbFluid fluid({1, h + 2, 1}, LbParameters{1.0, nu, 0.0, 0.0, 0.0, 1});
-  fluid.set_solid(fluid.node(0, 0, 0), Vec3(0, 0, bottom));
-  fluid.set_solid(fluid.node(0, h + 1, 0), Vec3(0, 0, top));
-  fluid.set_body_force(Vec3(0, 0, g));
-  const int steps = static_cast<int>(20.0 * h * h / nu);  // 20 momentum-diffusion times
-  for (int s = 0; s < steps; ++s) fluid.step();
-  std::vector<double> u;
-  for (int y = 1; y <= h; ++y) u.push_back(fluid.velocity(fluid.node(0, y, 0)).z());
-  return u;
-}
-
-}  // namespace
 
 TEST(LbFluid, CouetteFlowIsLinearBetweenHalfwayWalls) {
   // Walls at y = 1 and y = h + 1 moving at −U and +U: u(y) = U (2 (y − 1)/h − 1) at the node

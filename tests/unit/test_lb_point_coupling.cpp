@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "anisodyn/core/error.hpp"
+#include "anisodyn/lb/fluid_checks.hpp"
 #include "anisodyn/lb/point_coupling.hpp"
 
 using namespace anisodyn;
@@ -106,53 +107,19 @@ TEST(PointCoupling, BadParametersAreRefused) {
   EXPECT_THROW(PointCoupling(1.0, 0.5, -1.0, 1), InputError);
 }
 
-namespace {
-
-/// The steady velocity per unit force of one bead of friction ξ pulled by F along x through a
-/// deterministic L³ fluid (ρ = 1, ν = 0.5), relative to the fluid's mean velocity; the fluid is
-/// pushed back by −F spread over all nodes, so that the total momentum stays zero. Two MD steps
-/// per LB step; the bead's mass m = 2ξh keeps ξh/m at ½. Run for four momentum-diffusion times
-/// L²/ν, averaged over the last two.
-double pulled_bead_mobility(double L_edge, double xi, const Vec3& start, CouplingVelocity convention) {
-  const int L = static_cast<int>(L_edge);
-  const double nu = 0.5, h = 0.5, mass = 2.0 * xi * h;
-  LbFluid fluid({L, L, L}, LbParameters{1.0, nu, 0.0, 0.0, 0.0, 1});
-  const PointCoupling coupling(xi, h, 0.0, 1, convention);
-  const Vec3 pull(1e-4, 0, 0);
-  fluid.set_body_force(-pull / static_cast<double>(fluid.nodes()));
-  std::vector<Vec3> r{start}, v{Vec3::Zero()}, force;
-  const std::vector<std::uint32_t> id{0};
-  const int steps = static_cast<int>(4.0 * L * L / nu);
-  double sum = 0.0;
-  int samples = 0;
-  for (int s = 0; s < steps; ++s) {
-    for (int sub = 0; sub < 2; ++sub) {
-      coupling.couple(fluid, r, v, id, static_cast<std::uint64_t>(2 * s + sub), force);
-      v[0] += (h / mass) * (force[0] + pull);
-      r[0] += h * v[0];
-    }
-    fluid.step();
-    if (s >= steps / 2) {
-      sum += v[0].x() - fluid.total_momentum().x() / fluid.total_mass();
-      ++samples;
-    }
-  }
-  return sum / samples / pull.x();
-}
-
-}  // namespace
 
 TEST(PointCoupling, APulledBeadsFrictionActsInSeriesWithTheFluids) {
   // Ahlrichs and Dünweg's form μ = 1/ξ + 1/(g η a) − 2.837297/(6π η L): the fluid's part does not
   // depend on ξ, so μ(ξ₁) − μ(ξ₂) = 1/ξ₁ − 1/ξ₂ at every position of the bead in its cell. The
   // fluid's part (as g) depends on the position: printed, and in docs/lb.md.
-  const double eta = 0.5, L = 12;
+  const double eta = 0.5;
+  const int L = 12;
   for (const auto convention : {CouplingVelocity::kWithHalfForce, CouplingVelocity::kMomentumOnly})
     for (const Vec3& start : {Vec3(3.5, 3.5, 3.5), Vec3(4.0, 4.0, 4.0), Vec3(3.8, 4.3, 3.6)}) {
-      const double weak = pulled_bead_mobility(L, 0.5, start, convention), strong = pulled_bead_mobility(L, 1.0, start, convention);
-      const double g = 1.0 / (eta * (strong - 1.0 + 2.837297 / (6.0 * M_PI * eta * L)));
+      const double weak = checks::pulled_bead_mobility(L, 0.5, 0.5, start, convention), strong = checks::pulled_bead_mobility(L, 0.5, 1.0, start, convention);
+      const double g = checks::ahlrichs_dunweg_g(strong, 1.0, eta, L);
       std::printf("%s, bead at (%.1f, %.1f, %.1f), L = %g: mobility %.5f (xi = 0.5), %.5f (xi = 1); difference %.5f (1/xi: 1); g = %.2f\n",
-                  convention == CouplingVelocity::kWithHalfForce ? "u = (j + f/2)/rho" : "u = j/rho", start.x(), start.y(), start.z(), L, weak, strong,
+                  convention == CouplingVelocity::kWithHalfForce ? "u = (j + f/2)/rho" : "u = j/rho", start.x(), start.y(), start.z(), double(L), weak, strong,
                   weak - strong, g);
       // Off the nodes within 0.4%. On a node (3.5, …) the form holds less well: 1.1% short with the
       // half force, 2.5% over without it.

@@ -200,7 +200,10 @@ class Report:
         if not names:
             raise ReportError(f"{where}.names: no scalar of stage '{block['stage']}' matches {patterns}")
         grid_vars = list(self.m.get("grid", {}))
-        csv_name = f"{block.get('name', block['stage'] + '_scalars')}.csv"
+        # One file per block: a second block of the same stage gets the block's number (it would overwrite the first).
+        csv_name = f"{block['stage']}_scalars.csv"
+        if any(b.get("stage") == block["stage"] for b in self.spec.get("scalars", [])[:k]):
+            csv_name = f"{block['stage']}_scalars_{k}.csv"
         with open(os.path.join(self.out, csv_name), "w", newline="") as f:
             w = csv.writer(f)
             w.writerow(grid_vars + sum([[n, n + "_se"] for n in names], []))
