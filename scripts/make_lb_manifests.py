@@ -362,6 +362,40 @@ def ellipsoid_manifest(smoke):
     }
 
 
+# --- D0: the analytic checks (no fluid) ----------------------------------------------------------
+def analytic_checks_manifest(smoke):
+    return {
+        "study": "lb_analytic_checks" + ("-smoke" if smoke else ""),
+        "description": ("D0 smoke, the study itself: " if smoke else "Study D0 (spec 60 D0): ")
+        + "the LB analysis without a fluid (anisodyn-lb-checks, suite analytic): synthetic Brownian bodies of known body-frame D_t,i "
+          "and D_r,i (D_par != D_perp, the reference vector 0.9 rad from the axis; and a sphere) through anisodyn-lb-diffusion's lag "
+          "curves at one interval: the lab MSD, the single-vector estimator (2[D_par sin^2 a + D_perp(1 + cos^2 a)], a sphere's 4 D_r), "
+          "the three-axis sum, the body-frame MSD and the projection method per axis, and the paper conventions' 2/3; free Brownian "
+          "motion from a disk through the pore-frame transform (S = 1 from beta = 0.2); the spheroid nearest-point bisection against "
+          "brute force; the reduced units in SI against spec 70 §7.1; and in the report the spheroid factors A, B, E-L against spec 70 "
+          "§7.3's table (within 1e-4 or half a unit of the last printed digit) with its identities (harmonic and rotational means, disk "
+          "and sphere limits). 300 bodies of 1500 intervals per case; seconds.",
+        "replicas": 1,
+        "stages": [{"name": "checks", "tool": "lb-checks", "params": {"suite": "analytic", "seed": 17}}],
+        "report": {
+            "title": "D0" + (" smoke" if smoke else "") + ": analytic checks of the LB analysis",
+            "scalars": [{"stage": "checks", "names": ["synthetic_*"],
+                         "caption": "synthetic bodies: measured over expected (target 1; the paper conventions 2/3)"},
+                        {"stage": "checks", "names": ["pore_frame_worst_pull", "nearest_point_*"],
+                         "caption": "pore frame (largest pull, Gaussian: about 3 at most) and the nearest-point bisection (target: round-off)"},
+                        {"stage": "checks", "names": ["unit_*"], "caption": "reduced units in SI: relative difference from spec 70 §7.1's printed values"}],
+            "plots": [{"name": "pore_frame", "stage": "checks", "table": "pore_frame_free", "x": "beta", "y": ["S_x", "S_y", "S_z"],
+                       "theory": [{"kind": "constant", "value": 1, "label": "free motion: S = 1"}],
+                       "xlabel": "beta = d/(R_pore - R)", "ylabel": "S_i = 2D / <dx_i^2>", "title": "Pore-frame transform of free motion"}],
+            "spheroid_reference": {"tolerance": 1e-4},
+        },
+    }
+
+
+write("lb_analytic_checks-smoke", analytic_checks_manifest(True))
+write("lb_analytic_checks", analytic_checks_manifest(False))
+
+
 # --- D1: the fluid checks (spec 40 §2.5, §3) -----------------------------------------------------
 def fluid_checks_manifest(smoke):
     lb_steps = 5000 if smoke else 50_000

@@ -187,10 +187,12 @@ for what, cfg, start, path in bad_pore:
         continue
     expect_bad_input(what, [tool("anisodyn-lb"), "--config", write("bad.json", cfg), "--input", start, "--output", "bad.h5"], [path, ("bad.json", start)])
 
-# 6. anisodyn-lb-checks (study D1) refuses what it cannot run, writing nothing (the smoke runs it).
+# 6. anisodyn-lb-checks (studies D0, D1) refuses what it cannot run, writing nothing (the smoke runs it).
 for what, cfg, path in (("a lattice too small", {"box": 3}, "box"), ("too few steps for 10 blocks", {"lb_steps": 50}, "lb_steps"),
                         ("one mobility position", {"mobility_positions": 1}, "mobility_positions"),
-                        ("an unknown key", {"viscosity": 0.1}, "viscosity")):
+                        ("an unknown key", {"viscosity": 0.1}, "viscosity"), ("an unknown suite", {"suite": "pore"}, "suite"),
+                        ("a fluid key in the analytic suite", {"suite": "analytic", "box": 24}, "box"),
+                        ("an analytic key in the fluid suite", {"bodies": 100}, "bodies")):
     expect_bad_input(what, [tool("anisodyn-lb-checks"), "--config", write("bad.json", cfg), "--output", "bad.h5"], [path, "bad.json"])
 expect_bad_input("an input file", [tool("anisodyn-lb-checks"), "--config", write("bad.json", {}), "--input", sphere_start, "--output", "bad.h5"],
                  ["--input"])

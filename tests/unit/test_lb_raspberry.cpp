@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "anisodyn/core/error.hpp"
+#include "anisodyn/analysis/lb_analytic_checks.hpp"
 #include "anisodyn/lb/raspberry.hpp"
 
 using namespace anisodyn;
@@ -70,25 +71,10 @@ TEST(Raspberry, NearestSurfacePointMatchesABruteForceSearch) {
   const Vec3 points[5] = {Vec3(1.2, -0.7, 0.4), Vec3(5.0, 3.0, -2.0), Vec3(-0.3, 0.2, 2.9), Vec3(0.1, 4.4, 0.2), Vec3(9.0, -0.5, 0.3)};
   for (const Vec3& s : axes)
     for (const Vec3& r : points) {
-      const Vec3 p = nearest_surface_point(s, r);
-      EXPECT_NEAR(p.cwiseQuotient(s).squaredNorm(), 1.0, 1e-12);
-      const auto surface = [&](double th, double ph) { return Vec3(s.x() * std::cos(th), s.y() * std::sin(th) * std::cos(ph), s.z() * std::sin(th) * std::sin(ph)); };
-      double best = std::numeric_limits<double>::infinity(), bt = 0, bp = 0;
-      for (int i = 0; i <= 1000; ++i)
-        for (int j = 0; j < 2000; ++j) {
-          const double th = M_PI * i / 1000, ph = 2 * M_PI * j / 2000;
-          const double d = (surface(th, ph) - r).squaredNorm();
-          if (d < best) best = d, bt = th, bp = ph;
-        }
-      for (double scale = 1e-3; scale > 1e-9; scale *= 0.5)  // local refinement of the grid's best
-        for (int i = -3; i <= 3; ++i)
-          for (int j = -3; j <= 3; ++j) {
-            const double th = bt + i * scale, ph = bp + j * scale;
-            const double d = (surface(th, ph) - r).squaredNorm();
-            if (d < best) best = d, bt = th, bp = ph;
-          }
-      EXPECT_NEAR((p - r).norm(), std::sqrt(best), 1e-7) << s.transpose() << " / " << r.transpose();
-      EXPECT_LT((p - surface(bt, bp)).norm(), 1e-4) << s.transpose() << " / " << r.transpose();
+      const analysis::checks::NearestPoint n = analysis::checks::nearest_point_against_brute_force(s, r);
+      EXPECT_LT(n.off_surface, 1e-12);
+      EXPECT_NEAR(n.bisection, n.brute_force, 1e-7) << s.transpose() << " / " << r.transpose();
+      EXPECT_LT(n.point_difference, 1e-4) << s.transpose() << " / " << r.transpose();
     }
 }
 

@@ -365,8 +365,15 @@ def validate_report(m):
     if not isinstance(rep, dict):
         raise ManifestError("report", "an object {title, scalars, plots}", rep)
     for k in rep:
-        if k not in ("title", "scalars", "plots", "raspberry"):
-            raise ManifestError(f"report.{k}", "one of title, scalars, plots, raspberry (unknown key)")
+        if k not in ("title", "scalars", "plots", "raspberry", "spheroid_reference"):
+            raise ManifestError(f"report.{k}", "one of title, scalars, plots, raspberry, spheroid_reference (unknown key)")
+    if "spheroid_reference" in rep:
+        ref = rep["spheroid_reference"]
+        if not isinstance(ref, dict):
+            raise ManifestError("report.spheroid_reference", "an object {tolerance}", ref)
+        check_keys(ref, {"tolerance"}, "report.spheroid_reference", "in the spheroid reference block")
+        if "tolerance" in ref and not (is_number(ref["tolerance"]) and ref["tolerance"] > 0):
+            raise ManifestError("report.spheroid_reference.tolerance", "a positive number (absolute)", ref["tolerance"])
     if "raspberry" in rep:
         validate_raspberry(rep["raspberry"], m)
     stages = {st["name"] for st in m["stages"]}

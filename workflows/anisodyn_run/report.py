@@ -142,6 +142,8 @@ class Report:
             lines += self.plot(plot, k)
         if "raspberry" in self.spec:
             lines += self.raspberry(self.spec["raspberry"])
+        if "spheroid_reference" in self.spec:
+            lines += self.spheroid_reference(self.spec["spheroid_reference"])
         lines += self.diffusion_sources()
         lines += self.all_scalars()
         return lines
@@ -152,6 +154,29 @@ class Report:
             return Section(spec, self.stage_jobs(spec["stage"], "report.raspberry"), self.path, self.out, self.campaign).write()
         except (RaspberryError, ValueError) as e:
             raise ReportError(f"report.raspberry: {e}")
+
+    def spheroid_reference(self, spec):
+        """Spec 40 §8.6's factors (spheroid_theory.py) against spec 70 §7.3's printed table, each entry within
+        `tolerance` or half a unit of its last printed digit, whichever is larger; and the table's identities."""
+        from .spheroid_theory import identity_checks, table_comparison
+        tolerance = spec.get("tolerance", 1e-4)
+        rows = table_comparison()
+        failed = [r for r in rows if r[4] > max(tolerance, r[5])]
+        worst = max(rows, key=lambda r: r[4])
+        with open(os.path.join(self.out, "spheroid_reference.csv"), "w", newline="") as f:
+            w = csv.writer(f)
+            w.writerow(["phi", "factor", "computed", "printed", "difference", "half_unit_of_last_digit"])
+            w.writerows(rows)
+        lines = ["## Spheroid factors against spec 70 §7.3 (spec 40 §8.6)", "",
+                 f"{len(rows)} printed entries (A, B, E–L as t_ax, t_perp, r_ax, r_perp, and R_eff,t) against "
+                 "`workflows/anisodyn_run/spheroid_theory.py`: largest difference "
+                 f"{worst[4]:.2g} (φ = {worst[0]}, {worst[1]}: {worst[2]:.6g} against {worst[3]}); "
+                 f"{len(rows) - len(failed)} of {len(rows)} within {tolerance:g} or half a unit of their last digit. "
+                 "Table: [spheroid_reference.csv](spheroid_reference.csv)", ""]
+        lines += [f"- not within: φ = {r[0]}, {r[1]} = {r[2]:.6g}, printed {r[3]}" for r in failed]
+        lines += ["| identity | computed | reference | relative difference |", "|---|---|---|---|"]
+        lines += [f"| {what} | {value:.10g} | {ref:.10g} | {abs(value - ref) / abs(ref):.1e} |" for what, value, ref in identity_checks()]
+        return lines + [""]
 
     def diffusion_sources(self):
         """Where each species' diffusion tensors came from: the engine outputs' provenance records the

@@ -107,3 +107,64 @@ def factor(name, phi):
 
 
 FACTORS = ("A", "B", "t_ax", "t_perp", "r_ax", "r_perp", "t_ratio", "r_ratio")
+
+
+# --- spec 70 §7.3's printed table and verified identities (checks: study D0, tests) ----------------
+SPEC70_COLUMNS = ("A", "B", "t_ax", "t_perp", "r_ax", "r_perp", "R_eff_t")
+SPEC70_TABLE = """1/10 0.1478 0.0022 0.8525 0.6133 0.4789 0.4305 6.195
+1/5 0.2795 0.0169 0.8615 0.6596 0.5344 0.4480 5.200
+1/4 0.3403 0.0319 0.8673 0.6823 0.5624 0.4608 4.956
+1/3 0.4352 0.0708 0.8787 0.7197 0.6095 0.4882 4.695
+1/2 0.6046 0.2064 0.9053 0.7927 0.7050 0.5658 4.428
+2/3 0.7523 0.4156 0.9352 0.8636 0.8021 0.6754 4.311
+4/5 0.8580 0.6271 0.9606 0.9189 0.8807 0.7877 4.269
+9/10 0.9313 0.8064 0.9801 0.9597 0.9402 0.8870 4.254
+10/9 1.0717 1.2292 1.0223 1.0441 1.0669 1.1423 4.254
+5/4 1.1552 1.5330 1.0505 1.0985 1.1510 1.3460 4.269
+3/2 1.2912 2.1197 1.1017 1.1942 1.3037 1.7902 4.313
+2 1.5207 3.4248 1.2039 1.3789 1.6134 3.0099 4.436
+3 1.8697 6.5741 1.4045 1.7276 2.2439 7.0223 4.728
+4 2.1311 10.538 1.5979 2.0565 2.8842 13.583 5.025
+5 2.3397 15.394 1.7848 2.3710 3.5304 23.203 5.311
+10 3.0083 53.973 2.6471 3.8115 6.8047 133.68 6.557"""
+
+
+def half_unit(printed):
+    """Half a unit of the last printed digit."""
+    digits = len(printed.split(".")[1]) if "." in printed else 0
+    return 0.5 * 10.0 ** -digits
+
+
+def table_comparison():
+    """(phi as printed, column, computed, printed text, |computed - printed|, half a unit of its last digit) for every
+    entry of spec 70 §7.3's factor table; R_eff_t = a/A with a = 4.25 phi^(2/3) (constant volume)."""
+    out = []
+    for line in SPEC70_TABLE.splitlines():
+        words = line.split()
+        num, _, den = words[0].partition("/")
+        phi = float(num) / float(den or 1)
+        values = [factor(name, phi) for name in SPEC70_COLUMNS[:-1]] + [4.25 * phi ** (2.0 / 3.0) / lab_factors(phi)[0]]
+        for name, value, printed in zip(SPEC70_COLUMNS, values, words[1:]):
+            out.append((words[0], name, value, printed, abs(value - float(printed)), half_unit(printed)))
+    return out
+
+
+def identity_checks():
+    """(what, computed, reference) for spec 70 §7.3's verified identities: E-H against the ellipsoid integrals,
+    the harmonic and rotational means, the sphere and the disk limits, (I/J)^(1/3) at 10/9 and 10."""
+    out = []
+    for phi in (0.1, 0.25, 0.5, 0.9, 10 / 9, 2.0, 5.0, 10.0):
+        t_ax, t_perp = translation_factors(phi)
+        i_ax, i_perp = axis_translation_radii(phi)
+        A, B = lab_factors(phi)
+        r_ax, r_perp = rotation_factors(phi)
+        out += [(f"phi = {phi:.4g}: E/G from the ellipsoid integrals", t_ax, i_ax),
+                (f"phi = {phi:.4g}: F/H from the ellipsoid integrals", t_perp, i_perp),
+                (f"phi = {phi:.4g}: harmonic mean 3/(1/(c t_ax) + 2/(c t_perp)) = a/A", 3.0 / (1.0 / t_ax + 2.0 / t_perp), phi / A),
+                (f"phi = {phi:.4g}: rotational mean a^3/[3/(1/r_ax + 2/r_perp)] = B", phi ** 3 / (3.0 / (1.0 / r_ax + 2.0 / r_perp)), B)]
+    G, H = translation_factors(1e-6)
+    out += [("disk limit G(phi -> 0) = 8/(3 pi)", G, 8.0 / (3.0 * math.pi)), ("disk limit H(phi -> 0) = 16/(9 pi)", H, 16.0 / (9.0 * math.pi))]
+    out += [(f"sphere: {name}(1) = 1", factor(name, 1.0), 1.0) for name in ("A", "B", "t_ax", "t_perp", "r_ax", "r_perp")]
+    out += [(f"(I/J)^(1/3) at phi = {label} (printed {printed})", (rotation_factors(p)[0] / rotation_factors(p)[1]) ** (1 / 3), printed)
+            for label, p, printed in (("10/9", 10 / 9, 0.977), ("10", 10.0, 0.370))]
+    return out
