@@ -10,6 +10,9 @@ U_WALL = 0.013976   # spec 40 §7.2: 2.20 m/s in sigma/t0
 NU_SIM = 0.8        # spec 40 §1.1
 DT = 0.01           # MD time step (t0); the LB step is 2 DT
 ROW = 200           # MD steps per recording (spec 40 §1: 2 t0)
+L_ELLIPSOID = [27, 32, 38, 48, 55, 64, 76, 94]      # spec 40 §7.1
+RADII = [2.25, 2.75, 3.25, 3.75, 4.25, 4.75, 5.25, 5.75]
+RECORDINGS, RUNS = 200_000, 4                       # per box, in 4 runs (spec 40 §7.1 Decision)
 
 
 def write(name, manifest):
@@ -27,6 +30,21 @@ def sphere_config(seed):
         "box": {"edges": ["${grid.L}"] * 3}}}
 
 
+def diffusion_stages(shape, seed, xi, steps, fit, window_from, box="L", names=("config", "lb", "diffusion")):
+    """Config, free thermal run and lb-diffusion of one raspberry in a periodic box of edge ${grid.<box>}."""
+    config, lb, diffusion = names
+    return [
+        {"name": config, "tool": "config", "replicate": False, "params": {
+            "seed": seed, "placement": "lattice", "species": [{"name": "raspberry", "shape": shape}],
+            "composition": [{"species": "raspberry", "count": 1}], "box": {"edges": [f"${{grid.{box}}}"] * 3}}},
+        {"name": lb, "tool": "lb", "inputs": [config], "params": {
+            "seed": seed + 1, "time_step": DT, "steps": steps, "observe_every": 10 * ROW, "frames": {"every_steps": ROW},
+            "raspberries": {"xi_bead": xi}}},
+        {"name": diffusion, "tool": "lb-diffusion", "inputs": [lb], "params": {
+            **({"fit": fit} if fit else {}), **({"window": {"from": window_from}} if window_from else {})}},
+    ]
+
+
 # --- D2a: Stokes-flow drag of a fixed raspberry sphere (spec 40 §7.2) -------------------------------
 def resistance_manifest(smoke):
     if smoke:
@@ -36,7 +54,7 @@ def resistance_manifest(smoke):
         grid = {"d": [6.5, 11.5], "xi_bead": [10, 25, 50, 100, 200, 400, 600, 800, 1000], "L": [40, 50, 64]}
         t_run, t_window, blocks = 4000, 200, 10
     steps = round(t_run / DT)
-    return {
+    m = {
         "study": "lb_bead_resistance_sweep" + ("-smoke" if smoke else ""),
         "description": ("D2a smoke: " if smoke else "Study D2a (spec 60 D2, spec 40 §7.2; Ustach & Faller): ")
         + "a raspberry sphere (outer layer R, inner R - 0.5, simple-cubic fill, centre bead; spec 40 §5) held fixed at the centre of a "
@@ -75,10 +93,28 @@ def resistance_manifest(smoke):
                                   "title": "Finite-size check at xi_bead = 1000"}]),
         },
     }
+    return m
 
 
-for smoke in (True, False):
-    write("lb_bead_resistance_sweep" + ("-smoke" if smoke else ""), resistance_manifest(smoke))
+def add_diffusion_half(m):
+    """D2b (spec 60 D2, spec 40 §7.1): the same spheres free in the thermal fluid, in D3's eight boxes scaled with R,
+    2e5 recordings per box in 4 runs; xi^t from the Hasimoto extrapolation and xi^r from D_r (report block raspberry)."""
+    radii = [d / 2 for d in m["grid"]["d"]]
+    pairs = [(2 * r, round(l * r / 4.25)) for r in radii for l in L_ELLIPSOID]
+    m["grid"]["d"] = [p[0] for p in pairs]
+    m["grid"]["L_free"] = [p[1] for p in pairs]
+    m["zip"] = [["d", "L_free"]]
+    m["stages"] += diffusion_stages({"type": "sphere", "diameter": "${grid.d}"}, 75, "${grid.xi_bead}", RECORDINGS // RUNS * ROW, None, None,
+                                    box="L_free", names=("config_free", "lb_free", "diffusion"))
+    m["replicas"] = RUNS
+    m["stages"][1]["replicate"] = False  # D2a's deterministic runs need one replica
+    m["description"] = m["description"].replace(
+        "The diffusion part D2b is not in this manifest yet.",
+        f"D2b: the same spheres free in the thermal fluid, in D3's boxes L = round(L_ell R/4.25) (spec 40 §7.1), {RECORDINGS} recordings "
+        f"per box in {RUNS} runs; xi^t = kT/D_0 from the Hasimoto line and xi^r = kT/D_r (mean over the boxes) in the report's raspberry "
+        "section, against xi_bead with the Stokes and SED lines at 1.")
+    m["report"]["raspberry"] = {"stage": "diffusion", "box": "L_free", "plot": {"x": "xi_bead", "series": "d"}}
+
 
 
 def stokes_box_validation():
@@ -239,22 +275,6 @@ for smoke in (True, False):
 
 
 # --- D3, D4: diffusion of free raspberries (spec 40 §7.1, §8) -------------------------------------
-L_ELLIPSOID = [27, 32, 38, 48, 55, 64, 76, 94]      # spec 40 §7.1
-RADII = [2.25, 2.75, 3.25, 3.75, 4.25, 4.75, 5.25, 5.75]
-RECORDINGS, RUNS = 200_000, 4                       # per box, in 4 runs (spec 40 §7.1 Decision)
-
-
-def diffusion_stages(shape, seed, xi, steps, fit, window_from):
-    return [
-        {"name": "config", "tool": "config", "replicate": False, "params": {
-            "seed": seed, "placement": "lattice", "species": [{"name": "raspberry", "shape": shape}],
-            "composition": [{"species": "raspberry", "count": 1}], "box": {"edges": ["${grid.L}"] * 3}}},
-        {"name": "lb", "tool": "lb", "inputs": ["config"], "params": {
-            "seed": seed + 1, "time_step": DT, "steps": steps, "observe_every": 10 * ROW, "frames": {"every_steps": ROW},
-            "raspberries": {"xi_bead": xi}}},
-        {"name": "diffusion", "tool": "lb-diffusion", "inputs": ["lb"], "params": {
-            **({"fit": fit} if fit else {}), **({"window": {"from": window_from}} if window_from else {})}},
-    ]
 
 
 def hasimoto_plot(name, select, title):
@@ -517,3 +537,9 @@ hasimoto_free_sphere_validation()
 for smoke in (True, False):
     write("lb_sphere_radius_sweep" + ("-smoke" if smoke else ""), sphere_sweep_manifest(smoke))
     write("lb_ellipsoid_sweep" + ("-smoke" if smoke else ""), ellipsoid_manifest(smoke))
+
+
+write("lb_bead_resistance_sweep-smoke", resistance_manifest(True))  # spec 60 D2: the smoke is D2a only
+full_resistance = resistance_manifest(False)
+add_diffusion_half(full_resistance)
+write("lb_bead_resistance_sweep", full_resistance)

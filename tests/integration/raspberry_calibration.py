@@ -82,7 +82,7 @@ def run_section(spec, jobs, out):
 
 # --- exact spheres: the lines come back to round-off ---------------------------------------------
 exact_out = os.path.join(scratch, "results", "spheres", "report")
-lines = run_section({"stage": "diffusion", "box": "L", "calibration": {"fit": "xi_bead"}},
+lines = run_section({"stage": "diffusion", "box": "L", "calibration": {"fit": "xi_bead"}, "plot": {"x": "xi_bead", "series": "d"}},
                     sphere_jobs(os.path.join(scratch, "exact"), 0.01, None), exact_out)
 cal = json.load(open(os.path.join(exact_out, "raspberry_calibration.json")))
 for xi_bead, line in LINES.items():
@@ -95,7 +95,7 @@ for xi_bead, line in LINES.items():
 rows = list(__import__("csv").DictReader(open(os.path.join(exact_out, "raspberry_bodies.csv"))))
 worst = max(abs(float(r["slope"]) / float(r["hasimoto_slope"]) - 1) for r in rows)
 check(len(rows) == 8 and worst < 1e-8, f"8 bodies, each fitted D_t(1/L) slope equals Hasimoto's (worst relative {worst:.1e})")
-for png in ("xi_t_vs_R.png", "xi_r_vs_R3.png", "calibration_bars.png"):
+for png in ("xi_t_vs_R.png", "xi_r_vs_R3.png", "calibration_bars.png", "friction_ratios.png"):
     check(os.path.getsize(os.path.join(exact_out, png)) > 10_000, f"plot {png} written")
 
 # --- noisy spheres: errors that mean what they say ----------------------------------------------
@@ -154,7 +154,9 @@ for block, path in ((["x"], "report.raspberry"), ({"stage": "lb", "box": "L", "c
                     ({"stage": "diffusion", "box": "L", "calibration": {"fit": "L"}}, "report.raspberry.calibration.fit"),
                     ({"stage": "diffusion", "box": "L", "calibration": {"file": "f.json"}}, "report.raspberry.calibration.xi_bead"),
                     ({"stage": "diffusion", "box": "L", "calibration": "stokes", "series": "d"}, "report.raspberry.series"),
-                    ({"stage": "diffusion", "box": "L", "calibration": "perrin"}, "report.raspberry.calibration")):
+                    ({"stage": "diffusion", "box": "L", "calibration": "perrin"}, "report.raspberry.calibration"),
+                    ({"stage": "diffusion", "box": "L", "plot": {"x": "L"}}, "report.raspberry.plot.x"),
+                    ({"stage": "diffusion", "box": "L", "plot": {"x": "xi_bead", "colour": "d"}}, "report.raspberry.plot.colour")):
     try:
         validate_report({**base, "report": {"raspberry": block}})
         check(False, f"{block} refused")

@@ -331,7 +331,7 @@ def validate_raspberry(item, m):
     p = "report.raspberry"
     if not isinstance(item, dict):
         raise ManifestError(p, "an object {stage, box, calibration}", item)
-    check_keys(item, {"stage", "box", "calibration"}, p, "in the raspberry block")
+    check_keys(item, {"stage", "box", "calibration", "plot"}, p, "in the raspberry block")
     tools = {st["name"]: st["tool"] for st in m["stages"]}
     if tools.get(item.get("stage")) != "lb-diffusion":
         raise ManifestError(f"{p}.stage", "the name of an lb-diffusion stage of this manifest", item.get("stage"))
@@ -339,6 +339,14 @@ def validate_raspberry(item, m):
     if item.get("box") not in grid:
         raise ManifestError(f"{p}.box", "the grid variable that sets the box edge (" + (", ".join(grid) or "the manifest has none") + ")",
                             item.get("box"))
+    if "plot" in item:
+        plot = item["plot"]
+        if not isinstance(plot, dict):
+            raise ManifestError(f"{p}.plot", "an object {x, series}", plot)
+        check_keys(plot, {"x", "series"}, f"{p}.plot", "in the raspberry block's plot")
+        for key in ("x", "series") if "series" in plot else ("x",):
+            if plot.get(key) not in grid or plot.get(key) == item["box"]:
+                raise ManifestError(f"{p}.plot.{key}", "a grid variable other than the box", plot.get(key))
     cal = item.get("calibration")
     q = f"{p}.calibration"
     if cal is None or cal == "stokes":  # no calibration: the frictions per body only

@@ -204,6 +204,8 @@ class Section:
                  f"-{HASIMOTO} kT/(6πη)), D_r the weighted mean over the boxes (§8.2), ξ^t = kT/D_0, ξ^r = kT/D_r; units of the "
                  "simulated fluid (η = ρν of the run).", ""]
         lines += self.body_table()
+        if "plot" in self.spec:
+            lines += self.ratio_plot(self.spec["plot"]["x"], self.spec["plot"].get("series"))
         cal = self.spec.get("calibration")
         if isinstance(cal, dict) and "fit" in cal:
             lines += self.calibration_fit(cal["fit"])
@@ -232,6 +234,32 @@ class Section:
                          "friction_scale": b.friction_scale})
         self.write_csv("raspberry_bodies.csv", rows)
         return ["### Frictions per body", "", "Table: [raspberry_bodies.csv](raspberry_bodies.csv)", ""] + lines + [""]
+
+    def ratio_plot(self, x, series):
+        """xi^t/(6 pi eta R) and xi^r/(8 pi eta R^3) per body against a grid variable (spec 60 D2's two panels)."""
+        import matplotlib.pyplot as plt
+        import numpy as np
+        fig, axes = plt.subplots(1, 2, figsize=(9.6, 4.0))
+        groups = {}
+        for b in self.bodies:
+            groups.setdefault(format_value(b.point.get(series)) if series else "", []).append(b)
+        for ax, kind, title in ((axes[0], "t", "translation: ξ^t/(6πηR)"), (axes[1], "r", "rotation: ξ^r/(8πηR³)")):
+            for label, bodies in groups.items():
+                pts = []
+                for b in bodies:
+                    xi, se = b.friction_t() if kind == "t" else b.friction_r()
+                    stokes = 6 * math.pi * b.eta * b.radius if kind == "t" else 8 * math.pi * b.eta * b.radius ** 3
+                    pts.append((float(b.point[x]), xi / stokes, se / stokes))
+                p = np.array(sorted(pts))
+                ax.errorbar(p[:, 0], p[:, 1], yerr=p[:, 2], marker="o", ms=4, capsize=2, label=f"{series} = {label}" if series else None)
+            ax.axhline(1.0, color="k", lw=1, ls="--", label="Stokes" if kind == "t" else "Stokes-Einstein-Debye")
+            ax.set_xlabel(x)
+            ax.set_title(title)
+            ax.legend(fontsize=7)
+        fig.tight_layout()
+        fig.savefig(os.path.join(self.out, "friction_ratios.png"), dpi=110)
+        plt.close(fig)
+        return ["![friction_ratios](friction_ratios.png)", ""]
 
     def write_csv(self, name, rows):
         with open(os.path.join(self.out, name), "w", newline="") as f:
