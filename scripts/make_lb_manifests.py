@@ -222,6 +222,10 @@ ETA_SIM = 6.004 * NU_SIM
 D0_STOKES = 1.0 / (6 * 3.141592653589793 * ETA_SIM * R_PORE_RASPBERRY)  # kT/(6 pi eta R), R = 4.25
 
 
+# Spec 70 §7.4's centreline drag K(lambda) (external) at beta = 0 of each pore's S_z curve.
+CENTRELINE = [{"kind": "pore_centreline", "formula": f, "radius": R_PORE_RASPBERRY} for f in ("haberman_sayre", "bohlin")]
+
+
 def pore_manifest(smoke):
     import math
     if smoke:
@@ -236,8 +240,20 @@ def pore_manifest(smoke):
                       **({} if smoke else {"select": {"xi_bead": xi}}),
                       "xlabel": "beta = d / (R_pore - R)", "ylabel": f"S_{a} = D_0 / D_{a}^p",
                       "title": f"Enhanced drag, {'radial' if a == 'x' else 'azimuthal' if a == 'y' else 'axial'}"
-                      + ("" if smoke else f" (xi_bead = {xi})")}
+                      + ("" if smoke else f" (xi_bead = {xi})"),
+                      **({"theory": CENTRELINE} if a == "z" else {})}
                      for xi in (xis[:1] if smoke else xis) for a in "xyz"]
+    ablation_stages, ablation_plots = [], []
+    if not smoke:  # spec 40 §6: single-layer filled raspberries at high xi_bead in the same pores
+        ablation_stages = [
+            {"name": "lb_single", "tool": "lb", "inputs": ["config"], "params": {
+                "seed": 104, "time_step": DT, "steps": steps, "observe_every": 10 * ROW, "frames": {"every_steps": ROW},
+                "raspberries": {"xi_bead": 1000, "layers": "single"}, "pore": {"radius": "${grid.R_pore}"}}},
+            {"name": "pore_single", "tool": "lb-pore", "inputs": ["lb_single"], "params": {"D0": D0_STOKES, "lags": 25, "bin_width": 0.05}}]
+        ablation_plots = [{"name": f"S_{a}_single_layer", "stage": "pore_single", "table": "pore_bins", "x": "beta", "y": [f"S_{a}"],
+                           "xlabel": "beta = d / (R_pore - R)", "ylabel": f"S_{a} = D_0 / D_{a}^p",
+                           "title": f"Ablation, single-layer raspberry (xi_bead = 1000): S_{a}",
+                           **({"theory": CENTRELINE} if a == "z" else {})} for a in "xyz"]
     return {
         "study": "lb_pore" + ("-smoke" if smoke else ""),
         "description": ("D5 smoke: " if smoke else "Study D5 (spec 60 D5, spec 40 §6, §7.3, §9; Ustach & Faller): ")
@@ -248,7 +264,9 @@ def pore_manifest(smoke):
           "the same xi_bead, which a manifest cannot pass between studies: rescale S by that ratio). "
         + (f"lambda = 0.5 (R_pore = 8.5), L_xy = 32, L_z = 24 (reduced), xi_bead = 1000, {replicas} runs of {steps} MD steps." if smoke else
            f"lambda 0.1 ... 0.5, xi_bead 50, 200, 1000, L_z = {l_z}, L_xy = 2(R_pore + r_p) + 2 rounded up; 1.2 x 10^6 recordings each. "
-           "The single-layer ablation raspberries are not in this manifest yet."),
+           "Ablation (spec 40 §6): the single-layer filled raspberry (raspberries.layers single: no outer hydrodynamic-only layer), "
+           "xi_bead = 1000, in every pore (stages lb_single, pore_single; its plots next to the xi_bead = 1000 ones). The S_z plots "
+           "carry the centreline K(lambda) of Haberman-Sayre and Bohlin at beta = 0 (spec 70 §7.4, external)."),
         "replicas": replicas,
         "grid": grid,
         "zip": [["R_pore", "L_xy"]],
@@ -261,11 +279,13 @@ def pore_manifest(smoke):
                 "seed": 102, "time_step": DT, "steps": steps, "observe_every": 10 * ROW, "frames": {"every_steps": ROW},
                 "raspberries": {"xi_bead": "${grid.xi_bead}"}, "pore": {"radius": "${grid.R_pore}"}}},
             {"name": "pore", "tool": "lb-pore", "inputs": ["lb"], "params": {"D0": D0_STOKES, "lags": 25, "bin_width": 0.05}},
-        ],
+        ] + ablation_stages,
         "report": {
             "title": "D5" + (" smoke" if smoke else "") + ": enhanced drag in a cylindrical pore",
-            "scalars": [{"stage": "pore", "names": ["S_*_centreline"], "caption": "S_i of the sub-trajectories starting near the axis (beta < 0.1)"}],
-            "plots": per_component,
+            "scalars": [{"stage": "pore", "names": ["S_*_centreline"], "caption": "S_i of the sub-trajectories starting near the axis (beta < 0.1)"}]
+            + ([{"stage": "pore_single", "names": ["S_*_centreline"], "caption": "ablation (single layer, xi_bead = 1000): S_i near the axis"}]
+               if not smoke else []),
+            "plots": per_component + ablation_plots,
         },
     }
 

@@ -23,7 +23,8 @@ tool::Description description() {
                      "initial_velocity ([0, 0, 0]), warmup_steps (1000), body_force ([0, 0, 0])}: the D3Q19 fluid, in sigma, M0 and t0"),
       tool::required("raspberries", "object",
                      "{species (default: every species), xi_bead (required), xi_bead_is_nominal (true), centre_couples (true), fixed (false), "
-                     "coupling_velocity (with_half_force | momentum_only), allow_unstable (false)}: sphere and spheroid raspberries (spec 40 §4-§5)"),
+                     "coupling_velocity (with_half_force | momentum_only), allow_unstable (false), layers (two | single: without the outer "
+                     "hydrodynamic-only layer, spec 40 §6's ablation)}: sphere and spheroid raspberries (spec 40 §4-§5)"),
       tool::optional("walls", "object", nullptr,
                      "{normal: x | y | z, velocity ([0, 0, 0])}: a bounce-back wall layer at node 0 along normal, moving tangentially (spec 40 §7.2)"),
       tool::optional("pore", "object", nullptr,

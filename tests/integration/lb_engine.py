@@ -8,7 +8,8 @@
    along its long axis is below the sphere's of the same volume (Perrin: 0.95x at aspect 2);
 4. bad input exits 2, names the file and JSON path, writes nothing;
 5. a raspberry in a pore stays off the wall;
-6. anisodyn-lb-checks' bad input, likewise.
+6. anisodyn-lb-checks' bad input, likewise;
+7. the single-layer ablation drops the outer layer only.
 """
 import json
 import os
@@ -196,3 +197,12 @@ for what, cfg, path in (("a lattice too small", {"box": 3}, "box"), ("too few st
     expect_bad_input(what, [tool("anisodyn-lb-checks"), "--config", write("bad.json", cfg), "--output", "bad.h5"], [path, "bad.json"])
 expect_bad_input("an input file", [tool("anisodyn-lb-checks"), "--config", write("bad.json", {}), "--input", sphere_start, "--output", "bad.h5"],
                  ["--input"])
+
+# 7. The single-layer ablation (spec 40 §6): the same body without its outer layer.
+single = {**free, "steps": 20, "fluid": {"warmup_steps": 0}, "raspberries": {"xi_bead": 200, "layers": "single"}}
+r = run([tool("anisodyn-lb"), "-q", "--config", write("single.json", single), "--input", sphere_start, "--output", "single.h5"])
+assert r.returncode == 0, r.stderr
+layers = json.loads(r.stdout)["raspberries"]["bodies"]["body"]["layers"]
+assert layers["outer"] == 0 and layers["inner"] == 38 and layers["centre"] == 1, layers
+assert json.loads(r.stdout)["raspberries"]["layers"] == "single"
+print(f"single-layer ablation: layers {layers}")

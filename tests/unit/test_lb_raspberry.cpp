@@ -141,3 +141,17 @@ TEST(Raspberry, ARaspberryHasItsLayersFillAndCentre) {
   EXPECT_NEAR(moments.x(), m * 2.0 * s.y() * s.y() / 5.0, 1e-12 * moments.x());
   EXPECT_NEAR(moments.y(), m * (s.x() * s.x() + s.z() * s.z()) / 5.0, 1e-12 * moments.y());
 }
+
+TEST(Raspberry, TheSingleLayerAblationDropsTheOuterLayerOnly) {
+  // Spec 40 §6's ablation: the same raspberry without its outer hydrodynamic-only layer; the
+  // reference bead is then an inner-layer bead.
+  const Vec3 s(4.25, 4.25, 4.25);
+  const RaspberryGeometry two = make_raspberry(s), single = make_raspberry(s, false);
+  EXPECT_EQ(single.count(BeadLayer::kOuter), 0u);
+  EXPECT_EQ(single.count(BeadLayer::kInner), two.count(BeadLayer::kInner));
+  EXPECT_EQ(single.count(BeadLayer::kFill), two.count(BeadLayer::kFill));
+  EXPECT_EQ(single.count(BeadLayer::kCentre), 1u);
+  EXPECT_EQ(single.offset.size(), two.offset.size() - two.count(BeadLayer::kOuter));
+  EXPECT_EQ(single.layer[single.reference_bead], BeadLayer::kInner);
+  EXPECT_NEAR(single.offset[single.reference_bead].norm(), 3.75, 1e-9);
+}

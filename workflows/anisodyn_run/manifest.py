@@ -261,7 +261,7 @@ def substitute(value, point, replica, study):
 
 
 THEORY_KINDS = {"constant", "linear", "power", "exponential", "free_diffusion", "wertheim", "hasimoto", "periodic_rotation", "tirado_ratio", "fit_line",
-                "spheroid"}
+                "spheroid", "pore_centreline"}
 # The keys each report item reads (report.py): anything else would be silently ignored.
 SCALAR_BLOCK_KEYS = {"stage", "names", "caption"}
 PLOT_KEYS = {"name", "stage", "select", "log", "xlabel", "ylabel", "title", "caption", "theory"}
@@ -272,7 +272,7 @@ SERIES_ENTRY_KEYS = {"stage", "scalar", "label", "select", "band", "x_scale", "y
 THEORY_KEYS = {"constant": {"value"}, "linear": {"intercept", "slope"}, "power": {"prefactor", "exponent"},
                "exponential": {"tau", "amplitude"}, "free_diffusion": {"species", "component"}, "wertheim": {"scalar"},
                "hasimoto": {"boundary", "band"}, "periodic_rotation": {"band"}, "tirado_ratio": set(),
-               "fit_line": set(), "spheroid": {"factor", "scale"}}
+               "fit_line": set(), "spheroid": {"factor", "scale"}, "pore_centreline": {"formula", "radius", "pore_radius"}}
 THEORY_NUMBERS = {"linear": {"intercept", "slope"}}  # keys a line needs, each a number
 SPHEROID_FACTORS = ("A", "B", "t_ax", "t_perp", "r_ax", "r_perp", "t_ratio", "r_ratio")  # spheroid_theory.FACTORS
 
@@ -454,6 +454,17 @@ def validate_report(m):
                     raise ManifestError(f"{p}.theory[{j}].factor", "one of " + ", ".join(SPHEROID_FACTORS) + " (spec 40 §8.6)", t.get("factor"))
                 if t["kind"] == "spheroid" and "scale" in t and not is_number(t["scale"]):
                     raise ManifestError(f"{p}.theory[{j}].scale", "a number (the factor's multiplier)", t["scale"])
+                if t["kind"] == "pore_centreline":
+                    if "table" not in item:
+                        raise ManifestError(f"{p}.theory[{j}].kind", "a centreline point ('pore_centreline') only on a curve plot of a pore table",
+                                            t["kind"])
+                    if t.get("formula", "haberman_sayre") not in ("haberman_sayre", "bohlin"):
+                        raise ManifestError(f"{p}.theory[{j}].formula", "'haberman_sayre' or 'bohlin' (spec 70 §7.4)", t.get("formula"))
+                    if not (is_number(t.get("radius")) and t["radius"] > 0):
+                        raise ManifestError(f"{p}.theory[{j}].radius", "the sphere's radius (a positive number; lambda = radius / R_pore)",
+                                            t.get("radius"))
+                    if t.get("pore_radius", "R_pore") not in grid:
+                        raise ManifestError(f"{p}.theory[{j}].pore_radius", "the grid variable of the pore radius", t.get("pore_radius", "R_pore"))
                 if t["kind"] == "hasimoto" and t.get("boundary", "stick") not in ("stick", "slip"):
                     raise ManifestError(f"{p}.theory[{j}].boundary", "'stick' or 'slip'", t.get("boundary"))
                 if "band" in t and not (is_number(t["band"]) and 0 < t["band"] < 1):

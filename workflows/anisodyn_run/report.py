@@ -333,7 +333,8 @@ class Report:
                 curves[job.id] = (job, data[x][ok])
         # a free-particle line per grid point (its species' D); any other overlay once
         for t in spec.get("theory", []):
-            for job, xs in list(curves.values())[:None if t.get("kind") == "free_diffusion" else 1]:
+            per_curve = t.get("kind") in ("free_diffusion", "pore_centreline")  # drawn for each curve's grid point
+            for job, xs in list(curves.values())[:None if per_curve else 1]:
                 self.theory(ax, t, job, xs, where)
 
     def scalar_plot(self, ax, spec, where):
@@ -511,6 +512,17 @@ class Report:
             if "band" in t:
                 ax.fill_between(line, y * (1 - t["band"]), y * (1 + t["band"]), color=line_art.get_color(), alpha=0.15, lw=0,
                                 label=f"± {100 * t['band']:g}%")
+        elif kind == "pore_centreline":
+            # x = beta: spec 70 §7.4's centreline drag K(lambda = radius/R_pore) of the curve's pore, as a point at beta = 0.
+            from .pore_theory import FORMULAS, LABELS
+            pore = job.point.get(t.get("pore_radius", "R_pore"))
+            if pore is None:
+                raise ReportError(f"{where}.theory.pore_radius: the curve's grid point has no '{t.get('pore_radius', 'R_pore')}'")
+            lam = t["radius"] / float(pore)
+            formula = t.get("formula", "haberman_sayre")
+            hs = formula == "haberman_sayre"
+            ax.plot([0.0], [FORMULAS[formula](lam)], marker="*" if hs else "D", ms=10 if hs else 6, ls="none", color="k" if hs else "0.55", zorder=3,
+                    label=t.get("label", f"{LABELS[formula]} (external), lambda = {lam:.3g}"))
         elif kind == "spheroid":
             # x = phi = a/c: a factor of spec 40 §8.6 (A, B, t_ax, t_perp, r_ax, r_perp, t_ratio, r_ratio), times `scale`.
             from .spheroid_theory import factor

@@ -46,6 +46,7 @@ LbProtocol::Raspberries parse_raspberries(tool::ConfigNode& r, const LbProtocol:
                       : CouplingVelocity::kMomentumOnly;
   r.reject_unless(!rasp.fixed, "allow_unstable", "with fixed raspberries (a body held in place has no dynamics to become unstable)");
   rasp.allow_unstable = r.boolean("allow_unstable", false);
+  rasp.outer_layer = r.choice("layers", {"two", "single"}, "two") == "two";
   return rasp;
 }
 

@@ -113,7 +113,7 @@ void LbRunner::build_bodies(const std::vector<char>& raspberry, const std::strin
       throw InputError(config_file, "raspberries.species", "raspberry '" + sp.name + "' (largest extent " + std::to_string(2.0 * semi.maxCoeff()) +
                                                                ") is too large for the box: expected every edge at least its extent plus two node spacings (" +
                                                                std::to_string(extent) + ")");
-    geometry_[s] = make_raspberry(semi);
+    geometry_[s] = make_raspberry(semi, protocol_.raspberries.outer_layer);
     if (!protocol_.raspberries.centre_couples) {
       RaspberryGeometry& g = geometry_[s];
       for (std::size_t k = 0; k < g.offset.size(); ++k)
@@ -160,6 +160,7 @@ void LbRunner::check_stability(const std::string& config_file) {
   }
   summary_["raspberries"] = {{"bodies", bodies}, {"count", state_.particles.size()}, {"xi_bead", protocol_.raspberries.xi_bead},
                              {"xi_bead_simulated", xi}, {"centre_couples", protocol_.raspberries.centre_couples}, {"fixed", protocol_.raspberries.fixed},
+                             {"layers", protocol_.raspberries.outer_layer ? "two" : "single"},
                              {"coupling_velocity", protocol_.raspberries.velocity == CouplingVelocity::kWithHalfForce ? "with_half_force" : "momentum_only"}};
 }
 

@@ -115,7 +115,7 @@ std::vector<Vec3> surface_layer(const Vec3& semi_axes, std::size_t count, const 
 
 std::size_t RaspberryGeometry::count(BeadLayer which) const { return static_cast<std::size_t>(std::count(layer.begin(), layer.end(), which)); }
 
-RaspberryGeometry make_raspberry(const Vec3& semi_axes) {
+RaspberryGeometry make_raspberry(const Vec3& semi_axes, bool outer_layer) {
   const Vec3 inner = semi_axes - Vec3::Constant(0.5), fill = semi_axes - Vec3::Constant(1.0);
   if (!(inner.minCoeff() > 0.0))
     throw InputError("make_raspberry: the design surface needs semi-axes above 0.5 nm (the inner layer lies 0.5 nm inside it)");
@@ -132,7 +132,7 @@ RaspberryGeometry make_raspberry(const Vec3& semi_axes) {
       g.layer.push_back(tag);
     }
   };
-  add_layer(semi_axes, BeadLayer::kOuter);
+  if (outer_layer) add_layer(semi_axes, BeadLayer::kOuter);
   add_layer(inner, BeadLayer::kInner);
   if (fill.minCoeff() > 0.0) {
     const Vec3 reach = fill.array().floor();
@@ -147,11 +147,12 @@ RaspberryGeometry make_raspberry(const Vec3& semi_axes) {
   }
   g.offset.push_back(Vec3::Zero());
   g.layer.push_back(BeadLayer::kCentre);
-  // The reference bead: the outer bead nearest 45° from the symmetry axis (a direction that sees
-  // rotations about every axis).
+  // The reference bead: the outermost layer's bead nearest 45° from the symmetry axis (a direction
+  // that sees rotations about every axis).
+  const BeadLayer surface = outer_layer ? BeadLayer::kOuter : BeadLayer::kInner;
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < g.offset.size(); ++k) {
-    if (g.layer[k] != BeadLayer::kOuter) continue;
+    if (g.layer[k] != surface) continue;
     const double alpha = std::acos(std::clamp(g.offset[k].x() / g.offset[k].norm(), -1.0, 1.0));
     if (std::abs(alpha - M_PI / 4) < best) {
       best = std::abs(alpha - M_PI / 4);

@@ -8,7 +8,7 @@
 //              "initial_velocity": [0, 0, 0], "warmup_steps": 1000, "body_force": [0, 0, 0]},
 //    "raspberries": {"species": ["sphere"], "xi_bead": 1000, "xi_bead_is_nominal": true,
 //                    "centre_couples": true, "fixed": false, "coupling_velocity": "with_half_force",
-//                    "allow_unstable": false},
+//                    "allow_unstable": false, "layers": "two"},
 //    "walls": {"normal": "y", "velocity": [0, 0, 0.013976]},
 //    "pore": {"radius": 8.5, "wall_bead_radius": 6.25, "wall_bead_spacing": 5, "epsilon": 1},
 //    "frames": {...}, "observe_every": 200}
@@ -49,6 +49,7 @@ struct LbProtocol : run::TimeStepRun {
     bool fixed = false;                ///< held in place (Stokes-flow drag, spec 40 §7.2)
     CouplingVelocity velocity = CouplingVelocity::kWithHalfForce;
     bool allow_unstable = false;       ///< run with Δt Σ ξ_sim / m above 1
+    bool outer_layer = true;           ///< "layers": "single" drops the outer layer (spec 40 §6's ablation)
   } raspberries;
   /// A moving bounce-back wall: one layer of solid nodes at index 0 along `normal`; with the
   /// periodic box it bounds the fluid on both sides (spec 40 §7.2: the ±y faces).

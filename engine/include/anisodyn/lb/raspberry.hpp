@@ -56,9 +56,10 @@ struct RaspberryGeometry {
 };
 
 /// The raspberry of a sphere (a = b = c = R) or spheroid (a, b = c): both layers at 1 bead/nm²,
-/// the fill and the centre bead (spec 40 §5.1). Throws InputError for an inner layer with a
-/// semi-axis ≤ 0 (a design surface thinner than 1 nm).
-RaspberryGeometry make_raspberry(const Vec3& semi_axes);
+/// the fill and the centre bead (spec 40 §5.1); without the outer layer when outer_layer is false
+/// (spec 40 §6's single-layer ablation; the reference bead is then an inner one). Throws
+/// InputError for an inner layer with a semi-axis ≤ 0 (a design surface thinner than 1 nm).
+RaspberryGeometry make_raspberry(const Vec3& semi_axes, bool outer_layer = true);
 
 /// m = ρ (4/3) π a b c: density matched to the fluid (spec 40 §4).
 double raspberry_mass(const Vec3& semi_axes, double fluid_density);

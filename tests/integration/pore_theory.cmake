@@ -1,0 +1,1 @@
+anisodyn_add_script_test(pore_theory pore_theory.py)
