@@ -11,6 +11,7 @@
 #include "anisodyn/analysis/fitting.hpp"
 #include "anisodyn/analysis/raspberry_diffusion.hpp"
 #include "anisodyn/analysis/replica_statistics.hpp"
+#include "anisodyn/analysis/lb_run_summary.hpp"
 #include "anisodyn/analysis/stage.hpp"
 #include "anisodyn/core/error.hpp"
 #include "anisodyn/io/h5md.hpp"
@@ -44,16 +45,13 @@ struct RunFacts {
 RunFacts run_facts(const std::string& path) {
   const io::H5mdReader reader(path);
   const nlohmann::json provenance = reader.provenance();
-  const auto engine = reader.checkpoint();
-  if (!provenance.contains("units") || !engine || !engine->contains("runner") || !engine->at("runner").at("summary").contains("raspberries"))
-    throw InputError(path, "/parameters/provenance", "an anisodyn-lb run (its provenance has no units, or its summary no raspberries)");
+  if (!provenance.contains("units")) throw InputError(path, "/parameters/provenance", "an anisodyn-lb run (its provenance has no units)");
   const nlohmann::json& units = provenance.at("units");
-  const nlohmann::json& summary = engine->at("runner").at("summary");
+  const LbRunSummary run = read_lb_run_summary(reader, path);
+  const nlohmann::json& summary = run.summary;
   if (summary.at("raspberries").at("fixed").get<bool>()) throw InputError(path, "/parameters/config", "free raspberries (this run holds them fixed)");
   if (!(summary.at("kT").get<double>() > 0.0)) throw InputError(path, "/parameters/config", "a thermal run (fluid.thermal true): no noise, no diffusion");
-  const nlohmann::json& bodies = summary.at("raspberries").at("bodies");
-  if (bodies.size() != 1) throw InputError(path, "/particles/all", "one raspberry species");
-  const nlohmann::json& body = bodies.begin().value();
+  const nlohmann::json& body = run.body;
   RunFacts f;
   f.kT = summary.at("kT").get<double>();
   f.nu = units.at("simulated_kinematic_viscosity").get<double>();

@@ -11,6 +11,7 @@
 #include "anisodyn/analysis/fitting.hpp"
 #include "anisodyn/analysis/pore_frame.hpp"
 #include "anisodyn/analysis/replica_statistics.hpp"
+#include "anisodyn/analysis/lb_run_summary.hpp"
 #include "anisodyn/analysis/stage.hpp"
 #include "anisodyn/core/error.hpp"
 #include "anisodyn/io/h5md.hpp"
@@ -35,15 +36,10 @@ struct PoreFacts {
 
 PoreFacts pore_facts(const std::string& path) {
   const io::H5mdReader reader(path);
-  const auto engine = reader.checkpoint();
-  if (!engine || !engine->contains("runner") || !engine->at("runner").at("summary").contains("pore"))
-    throw InputError(path, "/anisodyn/checkpoint/engine_state", "an anisodyn-lb run in a pore (its summary has no pore)");
-  const nlohmann::json& summary = engine->at("runner").at("summary");
-  const nlohmann::json& bodies = summary.at("raspberries").at("bodies");
-  if (bodies.size() != 1) throw InputError(path, "/particles/all", "one raspberry species");
-  const auto semi = bodies.begin().value().at("semi_axes").get<std::vector<double>>();
+  const LbRunSummary run = read_lb_run_summary(reader, path, "pore");
+  const auto semi = run.body.at("semi_axes").get<std::vector<double>>();
   PoreFacts f;
-  f.radius = summary.at("pore").at("radius").get<double>();
+  f.radius = run.summary.at("pore").at("radius").get<double>();
   f.gap = f.radius - *std::max_element(semi.begin(), semi.end());
   const Vec3 edges = reader.read_frame(0).box.edges();
   f.axis = Vec3(0.5 * edges.x(), 0.5 * edges.y(), 0.0);
