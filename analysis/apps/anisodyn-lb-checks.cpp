@@ -15,6 +15,7 @@
 #include "anisodyn/analysis/analysis_output.hpp"
 #include "anisodyn/analysis/lb_analytic_checks.hpp"
 #include "anisodyn/core/error.hpp"
+#include "anisodyn/core/statistics.hpp"
 #include "anisodyn/lb/fluid_checks.hpp"
 #include "anisodyn/lb/si_units.hpp"
 #include "anisodyn/tool/atomic_file.hpp"
@@ -179,10 +180,8 @@ void mobility_checks(AnalysisOutput& out, int positions, std::uint64_t seed) {
                   "pulled bead's mobility over Ahlrichs-Dunweg's 1/xi + 1/(g eta) - 2.837/(6 pi eta L), g = 25 (target 1 within 2%)",
                   {{"position", {points[p].x(), points[p].y(), points[p].z()}}, {"g_measured", g[c].back()}, {"box", L}, {"nu", nu}, {"xi", xi}}});
     }
-    double mean = 0.0, var = 0.0;
-    for (double r : random_ratio) mean += r / random_ratio.size();
-    for (double r : random_ratio) var += (r - mean) * (r - mean) / (random_ratio.size() - 1.0);
-    out.scalar({"mobility_over_AD_" + name + "_mean", mean, std::sqrt(var / random_ratio.size()), "1",
+    const MeanError mean = mean_of_independent(random_ratio);
+    out.scalar({"mobility_over_AD_" + name + "_mean", mean.mean, mean.error, "1",
                 "the same ratio averaged over random positions in a cell (error: their spread / sqrt(n))",
                 {{"positions", positions}, {"box", L}, {"nu", nu}, {"xi", xi}}});
   }
@@ -205,11 +204,11 @@ void mobility_checks(AnalysisOutput& out, int positions, std::uint64_t seed) {
 
 // --- suite "analytic" (D0) ---------------------------------------------------------------------
 
-void add_recovered(AnalysisOutput& out, Table& t, std::vector<double> (&cols)[4], const std::string& name, const analysis::checks::Recovered& r,
+void add_recovered(AnalysisOutput& out, std::vector<double> (&cols)[4], const std::string& name, const analysis::checks::Recovered& r,
                    const std::string& definition, const nlohmann::json& details) {
   out.scalar({"synthetic_" + name + "_ratio", r.value / r.expected, r.error / r.expected, "1", definition + " over its expected value (target 1)",
               details});
-  cols[0].push_back(static_cast<double>(t.rows() + cols[0].size()));
+  cols[0].push_back(static_cast<double>(cols[0].size()));
   cols[1].push_back(r.value), cols[2].push_back(r.error), cols[3].push_back(r.expected);
 }
 
@@ -224,19 +223,19 @@ void synthetic_body_checks(AnalysisOutput& out, int bodies, int intervals, std::
                                   {"D_r_body", {dr.x(), dr.y(), dr.z()}}, {"alpha", alpha}, {"lag", 1}};
   std::vector<double> cols[4];
   Table& t = out.table("synthetic_body", "lag-1 mean squares of synthetic Brownian bodies (rows in the order of the synthetic_* scalars)");
-  add_recovered(out, t, cols, "lab_msd", b.lab_msd, "lab MSD at one lag, 2 sum D_t,i", details);
-  add_recovered(out, t, cols, "single_vector", b.reference_angle, "reference-vector angle^2, 2[D_r,par sin^2 a + D_r,perp (1 + cos^2 a)] (spec 40 §8.2)", details);
-  add_recovered(out, t, cols, "three_axis", b.three_axis, "three-axis angle^2, 12 mean D_r", details);
+  add_recovered(out, cols, "lab_msd", b.lab_msd, "lab MSD at one lag, 2 sum D_t,i", details);
+  add_recovered(out, cols, "single_vector", b.reference_angle, "reference-vector angle^2, 2[D_r,par sin^2 a + D_r,perp (1 + cos^2 a)] (spec 40 §8.2)", details);
+  add_recovered(out, cols, "three_axis", b.three_axis, "three-axis angle^2, 12 mean D_r", details);
   static const char* axis[] = {"x", "y", "z"};
   for (std::size_t i = 0; i < 3; ++i) {
-    add_recovered(out, t, cols, std::string("body_msd_") + axis[i], b.body_msd[i], std::string("body-frame MSD along body ") + axis[i] + ", 2 D_t,i (§8.3)", details);
-    add_recovered(out, t, cols, std::string("body_angle_") + axis[i], b.body_angle[i],
+    add_recovered(out, cols, std::string("body_msd_") + axis[i], b.body_msd[i], std::string("body-frame MSD along body ") + axis[i] + ", 2 D_t,i (§8.3)", details);
+    add_recovered(out, cols, std::string("body_angle_") + axis[i], b.body_angle[i],
                   std::string("projected angle^2 about body ") + axis[i] + ", 2 D_r,i (§8.4, the projection method)", details);
   }
   nlohmann::json sphere_details = details;
   sphere_details["D_t_body"] = {0.03, 0.03, 0.03};
   sphere_details["D_r_body"] = {8e-4, 8e-4, 8e-4};
-  add_recovered(out, t, cols, "sphere_single_vector", sphere.reference_angle, "a sphere's reference-vector angle^2, 4 D_r (the 4 tau estimator)", sphere_details);
+  add_recovered(out, cols, "sphere_single_vector", sphere.reference_angle, "a sphere's reference-vector angle^2, 4 D_r (the 4 tau estimator)", sphere_details);
   t.add("row", "1", "row number", cols[0]);
   t.add("measured", "1", "mean over the bodies", cols[1]);
   t.add("measured_se", "1", "standard error over the bodies", cols[2]);

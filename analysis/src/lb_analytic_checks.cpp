@@ -6,6 +6,7 @@
 
 #include "anisodyn/analysis/pore_frame.hpp"
 #include "anisodyn/analysis/raspberry_diffusion.hpp"
+#include "anisodyn/core/statistics.hpp"
 #include "anisodyn/lb/raspberry.hpp"
 
 namespace anisodyn::analysis::checks {
@@ -13,11 +14,8 @@ namespace anisodyn::analysis::checks {
 namespace {
 
 Recovered mean_of(const std::vector<double>& samples, double expected) {
-  const double n = static_cast<double>(samples.size());
-  double m = 0.0, m2 = 0.0;
-  for (double v : samples) m += v, m2 += v * v;
-  m /= n;
-  return {m, std::sqrt((m2 / n - m * m) / (n - 1.0)), expected};
+  const MeanError m = mean_of_independent(samples);
+  return {m.mean, m.error, expected};
 }
 
 }  // namespace

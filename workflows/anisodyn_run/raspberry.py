@@ -19,6 +19,7 @@ import os
 
 from .fits import weighted_line, weighted_mean
 from .manifest import format_value
+from .report import fmt, read_scalars
 
 HASIMOTO = 2.837297
 TRANSLATION = ("D_t", "D_t_body_x", "D_t_body_y", "D_t_body_z")
@@ -28,19 +29,6 @@ CALIBRATION_FILE = "raspberry_calibration.json"
 
 class RaspberryError(Exception):
     pass
-
-
-def read_scalars_with_details(path):
-    """{name: (value, SE, details dict)} of an analysis output."""
-    import h5py
-    out = {}
-    with h5py.File(path, "r") as f:
-        for name, ds in f.get("scalars", {}).items():
-            v = ds[...]
-            text = ds.attrs.get("details", "{}")
-            out[name] = (float(v[0]), float(v[1]) if v.shape[0] > 1 else float("nan"),
-                         json.loads(text.decode() if isinstance(text, bytes) else text))
-    return out
 
 
 class Extrapolation:
@@ -63,14 +51,14 @@ class Body:
     """One raspberry (a grid point without the box variable) over its boxes."""
 
     def __init__(self, point, runs):
-        details = runs[0][1]["D_t"][2]
+        details = runs[0][1]["D_t"][4]
         self.point = point
         self.semi_axes = details["semi_axes"]
         self.radius, self.kT, self.eta, self.friction_scale = details["radius"], details["kT"], details["eta"], details["friction_scale"]
         if details.get("rotation_convention", "default") != "default":
             raise RaspberryError(f"{point_label(point)}: the factors need D_r in the default convention (the stage used "
                                  f"rotation_convention '{details['rotation_convention']}')")
-        self.boxes = [d["D_t"][2]["box"] for _, d in runs]
+        self.boxes = [d["D_t"][4]["box"] for _, d in runs]
         self.translation = {n: Extrapolation(self.boxes, [d[n][0] for _, d in runs], [d[n][1] for _, d in runs], self.kT, self.eta)
                             for n in TRANSLATION}
         self.rotation = {n: weighted_mean([d[n][0] for _, d in runs], [d[n][1] for _, d in runs]) for n in ROTATION}
@@ -100,7 +88,7 @@ def collect_bodies(jobs, path_of, box_var):
     groups = {}
     for job in jobs:
         key = tuple((k, format_value(v)) for k, v in job.point.items() if k != box_var)
-        groups.setdefault(key, []).append((job, read_scalars_with_details(path_of(job))))
+        groups.setdefault(key, []).append((job, read_scalars(path_of(job), details=True)))
     bodies = []
     for key, runs in groups.items():
         missing = [n for n in TRANSLATION + ROTATION if n not in runs[0][1]]
@@ -183,12 +171,6 @@ def spheroid_factors(body, cal):
 
 FACTOR_THEORY = {"A": "A", "B": "B", "B_three_axis": "B", "t_ax": "t_ax", "t_perp": "t_perp", "r_ax": "r_ax", "r_perp": "r_perp"}
 FACTOR_LETTERS = {"t_ax": ("E", "G"), "t_perp": ("F", "H"), "r_ax": ("I", "K"), "r_perp": ("J", "L")}
-
-
-def fmt(v, e=None):
-    if v is None or (isinstance(v, float) and math.isnan(v)):
-        return "n/a"
-    return f"{v:.5g}" if e is None or math.isnan(e) or e == 0 else f"{v:.5g} ± {e:.2g}"
 
 
 class Section:

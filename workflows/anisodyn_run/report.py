@@ -28,8 +28,9 @@ def _imports():
     import numpy  # noqa: F401
 
 
-def read_scalars(path):
-    """{name: (value, error, units, definition)} of an analysis output."""
+def read_scalars(path, details=False):
+    """{name: (value, error, units, definition)} of an analysis output; with details, a fifth entry:
+    the scalar's details (a dict: fit window, run parameters ...)."""
     import h5py
     out = {}
     with h5py.File(path, "r") as f:
@@ -38,7 +39,7 @@ def read_scalars(path):
         for name, ds in f["scalars"].items():
             v = ds[...]
             out[name] = (float(v[0]), float(v[1]) if v.shape[0] > 1 else float("nan"),
-                         _attr(ds, "units"), _attr(ds, "definition"))
+                         _attr(ds, "units"), _attr(ds, "definition")) + ((json.loads(_attr(ds, "details") or "{}"),) if details else ())
     return out
 
 
