@@ -110,7 +110,7 @@ class Calibration:
     def fitted(bodies, source):
         radii = [b.radius for b in bodies]
         lines = []
-        for x, friction in (([r for r in radii], Body.friction_t), ([r ** 3 for r in radii], Body.friction_r)):
+        for x, friction in ((radii, Body.friction_t), ([r ** 3 for r in radii], Body.friction_r)):
             xi = [friction(b) for b in bodies]
             fit = weighted_line(x, [v for v, _ in xi], [e for _, e in xi])
             lines.append({"m": fit.c1, "b": fit.c0, "cov": fit.cov, "r2": fit.r2, "chi2": fit.chi2, "points": fit.points})

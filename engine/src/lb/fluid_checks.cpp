@@ -62,7 +62,8 @@ ModeVariances thermal_mode_variances(const LbParameters& p, int edge, int warmup
           const double d = k == 0 ? m[0] - p.density : m[static_cast<std::size_t>(k)];
           row[static_cast<std::size_t>(k)] += d * d / n;
         }
-        row[kU] += fluid.velocity(node).squaredNorm() / (3.0 * n);
+        // u = j/ρ from the modes already in hand (no forces act on this fluid).
+        row[kU] += Vec3(m[1], m[2], m[3]).squaredNorm() / (m[0] * m[0] * 3.0 * n);
       }
     }
     for (double& v : row) v /= samples;
