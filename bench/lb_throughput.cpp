@@ -84,6 +84,7 @@ void BM_CopyBandwidth(benchmark::State& bs) {
 }  // namespace
 
 BENCHMARK(BM_LbStep)->ArgsProduct({{64}, {1, 2}, {0, 1}})->UseRealTime()->Unit(benchmark::kMillisecond)->Apply([](auto* b) { bench::min_time_or_fixed_iterations(b, 2.0); });
+BENCHMARK(BM_LbStep)->Args({24, 1, 0})->Args({32, 1, 0})->Args({48, 1, 0})->Args({96, 1, 0})->UseRealTime()->Unit(benchmark::kMillisecond)->Apply([](auto* b) { bench::min_time_or_fixed_iterations(b, 2.0); });
 BENCHMARK(BM_LbCoupling1000Beads)->UseRealTime()->Unit(benchmark::kMillisecond)->Apply([](auto* b) { bench::min_time_or_fixed_iterations(b, 1.0); });
 BENCHMARK(BM_CopyBandwidth)->Args({1})->Args({2})->UseRealTime()->Unit(benchmark::kMillisecond)->Apply([](auto* b) { bench::min_time_or_fixed_iterations(b, 1.0); });
 BENCHMARK_MAIN();

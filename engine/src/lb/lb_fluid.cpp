@@ -8,6 +8,10 @@
 
 #include "anisodyn/core/error.hpp"
 
+#if defined(__AVX__)
+#include <immintrin.h>
+#endif
+
 namespace anisodyn::lb {
 
 namespace {
@@ -42,43 +46,76 @@ constexpr bool every_mode_has_a_parity() {
 }
 static_assert(every_mode_has_a_parity());
 
+/// −0.0: the identity of addition, which the compiler drops from a sum (a +0.0 it must keep, as
+/// −0.0 + 0.0 = +0.0).
+template <class T>
+[[gnu::always_inline]] inline T negative_zero() {
+  return -T{};
+}
+
 /// e · x, or −0.0 for e = 0.
 template <int E, class T>
 [[gnu::always_inline]] inline T times(const T& x) {
-  if constexpr (E == 0) return T{} - 0.0;
+  if constexpr (E == 0) return negative_zero<T>();
   else if constexpr (E == 1) return x;
   else if constexpr (E == -1) return -x;
   else return static_cast<double>(E) * x;
 }
 
+/// Sets of modes as bit masks: which ones a collision computes from the populations, and which
+/// ones are non-zero after it. A mode relaxed fully (γ = 0, spec 40's default for bulk and ghosts)
+/// is not needed before the collision, and a ghost without noise is zero after it: skipping them
+/// takes about half the arithmetic out of the deterministic step.
+using ModeSet = std::uint32_t;
+constexpr ModeSet modes_below(int k) { return (ModeSet{1} << k) - 1; }
+constexpr ModeSet kAllModes = modes_below(kQ);
+constexpr ModeSet kConservedModes = modes_below(kFirstStressMode);
+constexpr ModeSet kBulkMode = ModeSet{1} << kFirstStressMode;
+constexpr ModeSet kShearModes = modes_below(kFirstGhostMode) & ~modes_below(kFirstShearMode);
+constexpr ModeSet kGhostModes = kAllModes & ~modes_below(kFirstGhostMode);
+constexpr bool in(ModeSet set, int k) { return (set >> k) & 1U; }
+
+/// 1/b_k, exact at compile time (the collision divides by b_k after relaxing).
+constexpr std::array<double, kQ> inverse_norms() {
+  std::array<double, kQ> inv{};
+  for (int k = 0; k < kQ; ++k) inv[k] = 1.0 / kB[k];
+  return inv;
+}
+constexpr std::array<double, kQ> kInvB = inverse_norms();
+
 /// m_K from the rest population and the pair sums (even K) or differences (odd K).
 template <int K, class T, int... P>
 [[gnu::always_inline]] inline T mode_of(const T& rest, const T* sum, const T* diff, std::integer_sequence<int, P...>) {
-  if constexpr (odd_mode(K)) return ((T{} - 0.0) + ... + times<kE[K][2 * P + 1]>(diff[P]));
+  if constexpr (odd_mode(K)) return (negative_zero<T>() + ... + times<kE[K][2 * P + 1]>(diff[P]));
   else return (times<kE[K][0]>(rest) + ... + times<kE[K][2 * P + 1]>(sum[P]));
 }
 
-template <class T, int... K>
+/// The modes in Wanted (the others left as they are).
+template <ModeSet Wanted, class T, int... K>
 [[gnu::always_inline]] inline void modes_of(const T* n, T* m, std::integer_sequence<int, K...>) {
   T sum[kPairs], diff[kPairs];
   for (int p = 0; p < kPairs; ++p) sum[p] = n[2 * p + 1] + n[2 * p + 2], diff[p] = n[2 * p + 1] - n[2 * p + 2];
-  ((m[K] = mode_of<K>(n[0], sum, diff, std::make_integer_sequence<int, kPairs>{})), ...);
+  (..., [&] {
+    if constexpr (in(Wanted, K)) m[K] = mode_of<K>(n[0], sum, diff, std::make_integer_sequence<int, kPairs>{});
+  }());
 }
 
-/// Σ_k e_kI s_k over the even (Odd = false) or the odd modes k.
-template <int I, bool Odd, class T, int... K>
+/// Σ_k e_kI s_k over the even (Odd = false) or the odd modes k of Live.
+template <ModeSet Live, int I, bool Odd, class T, int... K>
 [[gnu::always_inline]] inline T part_of(const T* s, std::integer_sequence<int, K...>) {
-  return ((T{} - 0.0) + ... + times<odd_mode(K) == Odd ? kE[K][I] : 0>(s[K]));
+  return (negative_zero<T>() + ... + times<in(Live, K) && odd_mode(K) == Odd ? kE[K][I] : 0>(s[K]));
 }
 
-/// n_i = w_i Σ_k e_ki s_k, with s_k = m_k / b_k.
-template <class T, int... P>
+/// n_i = w_i Σ_k e_ki s_k over the modes of Live (the others are zero), with s_k = m_k / b_k.
+template <ModeSet Live, class T, int... P>
 [[gnu::always_inline]] inline void populations_of(const T* s, T* n, std::integer_sequence<int, P...>) {
   constexpr auto modes = std::make_integer_sequence<int, kQ>{};
-  n[0] = kW[0] * part_of<0, false>(s, modes);
-  ((n[2 * P + 1] = kW[2 * P + 1] * (part_of<2 * P + 1, false>(s, modes) + part_of<2 * P + 1, true>(s, modes)),
-    n[2 * P + 2] = kW[2 * P + 2] * (part_of<2 * P + 1, false>(s, modes) - part_of<2 * P + 1, true>(s, modes))),
-   ...);
+  n[0] = kW[0] * part_of<Live, 0, false>(s, modes);
+  (..., [&] {
+    const T even = part_of<Live, 2 * P + 1, false>(s, modes), odd = part_of<Live, 2 * P + 1, true>(s, modes);
+    n[2 * P + 1] = kW[2 * P + 1] * (even + odd);
+    n[2 * P + 2] = kW[2 * P + 2] * (even - odd);
+  }());
 }
 
 /// Eight nodes side by side (GCC's vector extension: one AVX-512 register, or two or four
@@ -96,6 +133,23 @@ constexpr std::size_t kPrefetchAhead = 64;
 }
 [[gnu::always_inline]] inline void store(double* p, const Lanes& v) { std::memcpy(p, &v, sizeof v); }
 [[gnu::always_inline]] inline Lanes splat(double a) { return Lanes{} + a; }
+
+/// A whole aligned cache line stored past the caches (no read for ownership).
+[[gnu::always_inline]] inline void store_streaming(double* p, const Lanes& v) {
+#if defined(__AVX512F__)
+  _mm512_stream_pd(p, reinterpret_cast<__m512d>(v));
+#elif defined(__AVX__)
+  _mm256_stream_pd(p, _mm256_set_pd(v[3], v[2], v[1], v[0]));
+  _mm256_stream_pd(p + 4, _mm256_set_pd(v[7], v[6], v[5], v[4]));
+#else
+  store(p, v);
+#endif
+}
+inline void fence_streaming_stores() {
+#if defined(__AVX__)
+  _mm_sfence();
+#endif
+}
 
 std::size_t wrap(long i, int n) { return static_cast<std::size_t>((i % n + n) % n); }
 
@@ -127,6 +181,9 @@ LbFluid::LbFluid(const std::array<int, 3>& dims, const LbParameters& params)
   // power-of-two stride (64³ nodes: 2 MB) the nineteen streams of a row map to the same cache sets
   // (measured: 18.4 against 23.6 MLUPS on 64³, docs/performance.md).
   stride_ = (nodes_ + kLanes - 1) / kLanes * kLanes + 3 * kLanes;
+  // Measured faster on every lattice tried, 24³ to 96³ (docs/performance.md); rows start on a
+  // cache line only when n_x is a whole number of vectors.
+  streaming_stores_ = dims[0] % kLanes == 0;
   f_.assign(kQ * stride_, 0.0);
   next_.assign(kQ * stride_, 0.0);
   fx_.assign(nodes_, 0.0);
@@ -142,6 +199,11 @@ void LbFluid::set_equilibrium(std::size_t node, double rho, const Vec3& u) {
     const double cu = kC[i][0] * u.x() + kC[i][1] * u.y() + kC[i][2] * u.z();
     f_[static_cast<std::size_t>(i) * stride_ + node] = kW[i] * rho * (1.0 + cu / kCs2 + cu * cu / (2.0 * kCs2 * kCs2) - uu / (2.0 * kCs2));
   }
+}
+
+void LbFluid::use_streaming_stores(bool on) {
+  if (on && dims_[0] % kLanes != 0) throw InputError("LbFluid: streaming stores need n_x to be a multiple of " + std::to_string(kLanes));
+  streaming_stores_ = on;
 }
 
 void LbFluid::set_solid(std::size_t node, const Vec3& wall_velocity) {
@@ -165,7 +227,7 @@ std::array<double, kQ> LbFluid::modes(std::size_t node) const {
   double n[kQ];
   for (int i = 0; i < kQ; ++i) n[i] = population(i, node);
   std::array<double, kQ> m;
-  modes_of(n, m.data(), std::make_integer_sequence<int, kQ>{});
+  modes_of<kAllModes>(n, m.data(), std::make_integer_sequence<int, kQ>{});
   return m;
 }
 
@@ -173,7 +235,7 @@ std::array<double, 4> LbFluid::conserved_modes(std::size_t node) const {
   double n[kQ];
   for (int i = 0; i < kQ; ++i) n[i] = population(i, node);
   std::array<double, 4> m;
-  modes_of(n, m.data(), std::make_integer_sequence<int, 4>{});
+  modes_of<kConservedModes>(n, m.data(), std::make_integer_sequence<int, kQ>{});
   return m;
 }
 
@@ -282,24 +344,26 @@ void LbFluid::build_links() {
 
 // One row (fixed y, z) of nodes: the pre-collision populations in, the post-collision ones into
 // out[i · stride + x] (stride: n_x rounded up to whole vectors); eight nodes at a time, the last
-// vector of a row padded from a copy. Solid nodes give zeros.
+// vector of a row padded from a copy. Solid nodes give zeros. Thermal: with the modes' noise;
+// BulkRelaxes, GhostsRelax: γ_b, γ_g ≠ 0, so that those modes are needed before the collision.
+template <bool Thermal, bool BulkRelaxes, bool GhostsRelax>
 void LbFluid::collide_row(std::size_t row, double* out, double* noise, std::size_t stride) const {
+  constexpr ModeSet kComputed = kConservedModes | kShearModes | (BulkRelaxes ? kBulkMode : 0) | (GhostsRelax ? kGhostModes : 0);
+  constexpr ModeSet kLive = kConservedModes | kBulkMode | kShearModes | (Thermal || GhostsRelax ? kGhostModes : 0);
   const int nx = dims_[0];
   const std::size_t first = row * static_cast<std::size_t>(nx);
-  const bool thermal = params_.kT > 0.0;
-  if (thermal) noise_.normals(steps_, static_cast<std::uint32_t>(first), static_cast<std::size_t>(nx), kNoisyModes, noise, stride);
+  if constexpr (Thermal) noise_.normals(steps_, static_cast<std::uint32_t>(first), static_cast<std::size_t>(nx), kNoisyModes, noise, stride);
   for (int x = 0; x < nx; x += kLanes) {
     const int lanes = std::min(kLanes, nx - x);
     const std::size_t node = first + static_cast<std::size_t>(x);
-    Lanes n[kQ], f0, f1, f2, fluid;
-    double solid_lane[kLanes];
-    for (int l = 0; l < kLanes; ++l) solid_lane[l] = l < lanes ? static_cast<double>(solid_[node + static_cast<std::size_t>(l)]) : 1.0;
-    fluid = 1.0 - load(solid_lane);
+    Lanes n[kQ], f0, f1, f2;
+    std::uint64_t solid_bytes = 0;  // one byte per lane; the common all-fluid vector skips the mask
     if (lanes == kLanes) {
       // Nineteen read streams are more than the hardware prefetcher follows: fetch ahead by hand.
       for (int i = 0; i < kQ; ++i) __builtin_prefetch(f_.data() + static_cast<std::size_t>(i) * stride_ + node + kPrefetchAhead);
       for (int i = 0; i < kQ; ++i) n[i] = load(f_.data() + static_cast<std::size_t>(i) * stride_ + node);
       f0 = load(fx_.data() + node), f1 = load(fy_.data() + node), f2 = load(fz_.data() + node);
+      std::memcpy(&solid_bytes, solid_.data() + node, sizeof solid_bytes);
     } else {  // the row's last, partial vector: padding lanes are solid (a density of 1, no force)
       double pad[kQ + 3][kLanes] = {};
       for (int l = 0; l < lanes; ++l) {
@@ -309,12 +373,17 @@ void LbFluid::collide_row(std::size_t row, double* out, double* noise, std::size
       }
       for (int i = 0; i < kQ; ++i) n[i] = load(pad[i]);
       f0 = load(pad[kQ]), f1 = load(pad[kQ + 1]), f2 = load(pad[kQ + 2]);
+      for (int l = 0; l < kLanes; ++l)
+        if (l >= lanes || solid_[node + static_cast<std::size_t>(l)]) solid_bytes |= std::uint64_t{1} << (8 * l);
     }
+    Lanes solid = Lanes{};
+    if (solid_bytes != 0)
+      for (int l = 0; l < kLanes; ++l) solid[l] = static_cast<double>((solid_bytes >> (8 * l)) & 0xFF);
     f0 += body_force_.x(), f1 += body_force_.y(), f2 += body_force_.z();
     Lanes m[kQ];
-    modes_of(n, m, std::make_integer_sequence<int, kQ>{});
+    modes_of<kComputed>(n, m, std::make_integer_sequence<int, kQ>{});
     // A solid node holds no fluid: density 1 there keeps its (discarded) arithmetic finite.
-    const Lanes rho = m[0] + (1.0 - fluid);
+    const Lanes rho = solid_bytes != 0 ? m[0] + solid : m[0];
     const Lanes inv_rho = 1.0 / rho;
     const Lanes ux = (m[1] + 0.5 * f0) * inv_rho, uy = (m[2] + 0.5 * f1) * inv_rho, uz = (m[3] + 0.5 * f2) * inv_rho;
     // Equilibrium stress modes of Π = ρ c_s² I + ρ u u (spec 40 §2.2), and the force's u f + f u.
@@ -328,21 +397,31 @@ void LbFluid::collide_row(std::size_t row, double* out, double* noise, std::size
     s[1] = m[1] + f0;
     s[2] = m[2] + f1;
     s[3] = m[3] + f2;
-    for (int k = kFirstStressMode; k < kFirstGhostMode; ++k) {
+    if constexpr (BulkRelaxes) s[4] = eq[0] + gamma_[4] * (m[4] - eq[0]) + 0.5 * (1.0 + gamma_[4]) * force_stress[0];
+    else s[4] = eq[0] + 0.5 * force_stress[0];
+    for (int k = kFirstShearMode; k < kFirstGhostMode; ++k) {
       const int e = k - kFirstStressMode;
       s[k] = eq[e] + gamma_[k] * (m[k] - eq[e]) + 0.5 * (1.0 + gamma_[k]) * force_stress[e];
     }
-    for (int k = kFirstGhostMode; k < kQ; ++k) s[k] = gamma_[k] * m[k];
-    if (thermal) {
+    if constexpr (GhostsRelax)
+      for (int k = kFirstGhostMode; k < kQ; ++k) s[k] = gamma_[k] * m[k];
+    else if constexpr (Thermal)
+      for (int k = kFirstGhostMode; k < kQ; ++k) s[k] = Lanes{};
+    if constexpr (Thermal) {
       Lanes amplitude;
       for (int l = 0; l < kLanes; ++l) amplitude[l] = std::sqrt(std::max(rho[l], 0.0));
       for (int k = kFirstStressMode; k < kQ; ++k)
         s[k] += (amplitude * phi_[k]) * load(noise + static_cast<std::size_t>(k - kFirstStressMode) * stride + static_cast<std::size_t>(x));
     }
-    for (int k = 0; k < kQ; ++k) s[k] *= 1.0 / kB[k];
+    for (int k = 0; k < kQ; ++k)
+      if (in(kLive, k)) s[k] *= kInvB[static_cast<std::size_t>(k)];
     Lanes post[kQ];
-    populations_of(s, post, std::make_integer_sequence<int, kPairs>{});
-    for (int i = 0; i < kQ; ++i) store(out + static_cast<std::size_t>(i) * stride + static_cast<std::size_t>(x), post[i] * fluid);
+    populations_of<kLive>(s, post, std::make_integer_sequence<int, kPairs>{});
+    double* to = out + static_cast<std::size_t>(x);
+    if (solid_bytes == 0)
+      for (int i = 0; i < kQ; ++i) store(to + static_cast<std::size_t>(i) * stride, post[i]);
+    else
+      for (int i = 0; i < kQ; ++i) store(to + static_cast<std::size_t>(i) * stride, post[i] * (1.0 - solid));
   }
 }
 
@@ -363,41 +442,52 @@ void LbFluid::prefetch_destinations(std::size_t row) {
   }
 }
 
-void LbFluid::stream_row(std::size_t row, const double* out, std::size_t stride) {
-  const int nx = dims_[0];
+// Population i of the row's nodes, collided into out (row buffer, one halo value each side), is
+// shifted along x by c_ix on the way: the destination row is written whole vectors at a time,
+// aligned, and read from the buffer at x − c_ix.
+void LbFluid::stream_row(std::size_t row, double* out, std::size_t stride) {
+  const auto nx = static_cast<std::size_t>(dims_[0]);
   for (int i = 0; i < kQ; ++i) {
+    double* src = out + static_cast<std::size_t>(i) * stride;
+    src[-1] = src[nx - 1], src[nx] = src[0];  // periodic in x
+    src -= kC[i][0];
     double* dst = destination(i, row);
-    const double* src = out + static_cast<std::size_t>(i) * stride;
-    const std::size_t len = static_cast<std::size_t>(nx) - 1;
-    switch (kC[i][0]) {
-      case 0: std::memcpy(dst, src, sizeof(double) * static_cast<std::size_t>(nx)); break;
-      case 1:
-        std::memcpy(dst + 1, src, sizeof(double) * len);
-        dst[0] = src[len];
-        break;
-      default:
-        std::memcpy(dst, src + 1, sizeof(double) * len);
-        dst[len] = src[0];
-        break;
+    if (streaming_stores_) {
+      for (std::size_t x = 0; x < nx; x += kLanes) store_streaming(dst + x, load(src + x));
+    } else {
+      std::memcpy(dst, src, sizeof(double) * nx);
     }
   }
+}
+
+LbFluid::RowCollision LbFluid::row_collision() const {
+  const bool thermal = params_.kT > 0.0, bulk = gamma_[kFirstStressMode] != 0.0, ghosts = gamma_[kFirstGhostMode] != 0.0;
+  constexpr RowCollision kTable[2][2][2] = {
+      {{&LbFluid::collide_row<false, false, false>, &LbFluid::collide_row<false, false, true>},
+       {&LbFluid::collide_row<false, true, false>, &LbFluid::collide_row<false, true, true>}},
+      {{&LbFluid::collide_row<true, false, false>, &LbFluid::collide_row<true, false, true>},
+       {&LbFluid::collide_row<true, true, false>, &LbFluid::collide_row<true, true, true>}}};
+  return kTable[thermal][bulk][ghosts];
 }
 
 void LbFluid::step() {
   if (links_stale_) build_links();
   const std::size_t rows = static_cast<std::size_t>(dims_[1]) * static_cast<std::size_t>(dims_[2]);
-  const std::size_t stride = (static_cast<std::size_t>(dims_[0]) + kLanes - 1) / kLanes * kLanes;
+  // A row buffer holds each population's row, whole vectors, and a vector's gap before the next
+  // for the periodic halo (stream_row).
+  const std::size_t stride = (static_cast<std::size_t>(dims_[0]) + kLanes - 1) / kLanes * kLanes + kLanes;
+  const auto collide = row_collision();
 #pragma omp parallel if (nodes_ >= kParallelNodes)
   {
     // Each thread's row buffers, kept from step to step.
     static thread_local std::vector<double> out, noise;
-    out.resize(kQ * stride);
+    out.resize(kQ * stride + 2 * kLanes);
     noise.resize(params_.kT > 0.0 ? kNoisyModes * stride : 0);
 #pragma omp for schedule(static)
     for (std::size_t row = 0; row < rows; ++row) {
-      if (row + 1 < rows) prefetch_destinations(row + 1);
-      collide_row(row, out.data(), noise.data(), stride);
-      stream_row(row, out.data(), stride);
+      if (!streaming_stores_ && row + 1 < rows) prefetch_destinations(row + 1);
+      (this->*collide)(row, out.data() + kLanes, noise.data(), stride);
+      stream_row(row, out.data() + kLanes, stride);
     }
     // Halfway bounce-back: what a fluid node sent into a solid one comes back reversed.
 #pragma omp for schedule(static)
@@ -406,6 +496,7 @@ void LbFluid::step() {
       const int back = opposite(link.i);
       next_[static_cast<std::size_t>(back) * stride_ + link.fluid] = next_[static_cast<std::size_t>(link.i) * stride_ + link.solid] - link.wall_term;
     }
+    if (streaming_stores_) fence_streaming_stores();  // before another thread reads the rows
     if (forces_pending_) {
 #pragma omp for schedule(static)
       for (std::size_t n = 0; n < nodes_; ++n) fx_[n] = fy_[n] = fz_[n] = 0.0;

@@ -17,7 +17,9 @@
 // [i · stride + n], the stride a little over the node count), nodes x-fastest:
 // n = x + n_x (y + n_y z); node centres are at (x + ½, y + ½, z + ½).
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <new>
 #include <utility>
 #include <vector>
 
@@ -26,6 +28,22 @@
 #include "anisodyn/lb/d3q19.hpp"
 
 namespace anisodyn::lb {
+
+/// Storage on whole cache lines, so that a row of populations can be written as whole lines.
+template <class T>
+struct CacheLineAllocator {
+  using value_type = T;
+  static constexpr std::align_val_t kAlignment{64};
+  CacheLineAllocator() = default;
+  template <class U>
+  CacheLineAllocator(const CacheLineAllocator<U>&) {}
+  T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlignment)); }
+  void deallocate(T* p, std::size_t) { ::operator delete(p, kAlignment); }
+  template <class U>
+  bool operator==(const CacheLineAllocator<U>&) const {
+    return true;
+  }
+};
 
 /// The fluid's parameters, in lattice units.
 struct LbParameters {
@@ -92,6 +110,11 @@ class LbFluid {
   /// [i · nodes + n]), and the step (the noise's counter).
   std::vector<double> populations() const;
   void restore(const std::vector<double>& populations, std::uint64_t steps);
+  /// Whether rows are written past the caches (on by default where n_x is a multiple of 8). The
+  /// bits are the same either way; tests compare the two.
+  void use_streaming_stores(bool on);
+  bool streaming_stores() const { return streaming_stores_; }
+
   /// The force densities added for the next step (add_force), x of every node, then y, then z;
   /// with the populations, what a checkpoint between two LB steps needs.
   std::vector<double> pending_forces() const;
@@ -108,8 +131,12 @@ class LbFluid {
   /// ρ and j of a node (modes 0–3 alone: what velocities and totals need).
   std::array<double, 4> conserved_modes(std::size_t node) const;
   void build_links();
+  template <bool Thermal, bool BulkRelaxes, bool GhostsRelax>
   void collide_row(std::size_t row, double* out, double* noise, std::size_t stride) const;
-  void stream_row(std::size_t row, const double* out, std::size_t stride);
+  using RowCollision = void (LbFluid::*)(std::size_t, double*, double*, std::size_t) const;
+  /// The collision compiled for this fluid's noise and relaxations.
+  RowCollision row_collision() const;
+  void stream_row(std::size_t row, double* out, std::size_t stride);
   /// Where population i of a row's nodes goes (their x shifted by c_ix), and fetching those lines
   /// for writing while the row before is collided.
   double* destination(int i, std::size_t row);
@@ -122,7 +149,10 @@ class LbFluid {
   double gamma_[kQ];  ///< the relaxation of each mode (1 for the conserved ones)
   double phi_[kQ];    ///< √(μ b_k (1 − γ_k²)): the noise amplitude over √ρ
   NodeNoise noise_;
-  std::vector<double> f_, next_;  ///< populations now, and the next step's
+  std::vector<double, CacheLineAllocator<double>> f_, next_;  ///< populations now, and the next step's
+  /// Rows are written with non-temporal stores (whole cache lines, no read for ownership): for a
+  /// lattice larger than the caches, where the next step reads them from memory anyway.
+  bool streaming_stores_ = false;
   std::vector<double> fx_, fy_, fz_;
   bool forces_pending_ = false;
   Vec3 body_force_ = Vec3::Zero();
