@@ -223,7 +223,21 @@ D0_STOKES = 1.0 / (6 * 3.141592653589793 * ETA_SIM * R_PORE_RASPBERRY)  # kT/(6 
 
 
 # Spec 70 §7.4's centreline drag K(lambda) (external) at beta = 0 of each pore's S_z curve.
-CENTRELINE = [{"kind": "pore_centreline", "formula": f, "radius": R_PORE_RASPBERRY} for f in ("haberman_sayre", "bohlin")]
+CENTRELINE = [{"kind": "pore_centreline", "formula": f, "radius": R_PORE_RASPBERRY, "columns": ["S_z"]} for f in ("haberman_sayre", "bohlin")]
+ABLATION_XI = 1000  # spec 40 §6: the single-layer raspberry at high xi_bead
+
+
+def pore_panel(smoke):
+    """One panel of S_x, S_y, S_z against beta (rows xi_bead, a colour per pore), the ablation over its xi_bead row."""
+    return {"name": "S_panel", "stage": "pore", "table": "pore_bins", "x": "beta", "y": [f"S_{a}" for a in "xyz"], "rows": "xi_bead",
+            "overlay": {"stage": "pore_single", "label": "single layer (ablation)", "row": ABLATION_XI},
+            "xlabel": "beta = d / (R_pore - R)", "ylabel": "S_i = D_0 / D_i^p",
+            "title": "Enhanced drag in the pore" + (" (smoke)" if smoke else "") + ": radial S_x, azimuthal S_y, axial S_z",
+            "caption": f"Rows xi_bead, columns S_x, S_y, S_z against beta; a colour per pore (lambda = {R_PORE_RASPBERRY} / R_pore). Dashed, "
+                       f"open markers: the ablation, the single-layer raspberry at xi_bead = {ABLATION_XI}, over the xi_bead = {ABLATION_XI} "
+                       "row. At beta = 0 in the S_z column: the centreline K(lambda) of Haberman-Sayre (stars) and Bohlin (diamonds), "
+                       "external (spec 70 §7.4).",
+            "theory": CENTRELINE}
 
 
 def pore_manifest(smoke):
@@ -236,24 +250,13 @@ def pore_manifest(smoke):
         l_xy = {lam: math.ceil(2 * (R_PORE_RASPBERRY / lam + R_WALL_BEAD) + 2) for lam in lambdas}  # spec 40 §6's decision
     pores = [R_PORE_RASPBERRY / lam for lam in lambdas]
     grid = {"R_pore": pores, "L_xy": [l_xy[lam] for lam in lambdas], "xi_bead": xis}
-    per_component = [{"name": f"S_{a}" + ("" if smoke else f"_xi{xi}"), "stage": "pore", "table": "pore_bins", "x": "beta", "y": [f"S_{a}"],
-                      **({} if smoke else {"select": {"xi_bead": xi}}),
-                      "xlabel": "beta = d / (R_pore - R)", "ylabel": f"S_{a} = D_0 / D_{a}^p",
-                      "title": f"Enhanced drag, {'radial' if a == 'x' else 'azimuthal' if a == 'y' else 'axial'}"
-                      + ("" if smoke else f" (xi_bead = {xi})"),
-                      **({"theory": CENTRELINE} if a == "z" else {})}
-                     for xi in (xis[:1] if smoke else xis) for a in "xyz"]
-    ablation_stages, ablation_plots = [], []
-    if not smoke:  # spec 40 §6: single-layer filled raspberries at high xi_bead in the same pores
-        ablation_stages = [
-            {"name": "lb_single", "tool": "lb", "inputs": ["config"], "params": {
-                "seed": 104, "time_step": DT, "steps": steps, "observe_every": 10 * ROW, "frames": {"every_steps": ROW},
-                "raspberries": {"xi_bead": 1000, "layers": "single"}, "pore": {"radius": "${grid.R_pore}"}}},
-            {"name": "pore_single", "tool": "lb-pore", "inputs": ["lb_single"], "params": {"D0": D0_STOKES, "lags": 25, "bin_width": 0.05}}]
-        ablation_plots = [{"name": f"S_{a}_single_layer", "stage": "pore_single", "table": "pore_bins", "x": "beta", "y": [f"S_{a}"],
-                           "xlabel": "beta = d / (R_pore - R)", "ylabel": f"S_{a} = D_0 / D_{a}^p",
-                           "title": f"Ablation, single-layer raspberry (xi_bead = 1000): S_{a}",
-                           **({"theory": CENTRELINE} if a == "z" else {})} for a in "xyz"]
+    steps_single = steps // 2 if smoke else steps  # the smoke's ablation: half its runs
+    # spec 40 §6: single-layer filled raspberries at high xi_bead in the same pores
+    ablation_stages = [
+        {"name": "lb_single", "tool": "lb", "inputs": ["config"], "params": {
+            "seed": 104, "time_step": DT, "steps": steps_single, "observe_every": 10 * ROW, "frames": {"every_steps": ROW},
+            "raspberries": {"xi_bead": ABLATION_XI, "layers": "single"}, "pore": {"radius": "${grid.R_pore}"}}},
+        {"name": "pore_single", "tool": "lb-pore", "inputs": ["lb_single"], "params": {"D0": D0_STOKES, "lags": 25, "bin_width": 0.05}}]
     return {
         "study": "lb_pore" + ("-smoke" if smoke else ""),
         "description": ("D5 smoke: " if smoke else "Study D5 (spec 60 D5, spec 40 §6, §7.3, §9; Ustach & Faller): ")
@@ -262,11 +265,14 @@ def pore_manifest(smoke):
           "pore-frame MSDs per beta bin (0.05) over the first 25 recordings and S_i = D_0 / D_i^p (anisodyn-lb-pore). Decision: D_0 is "
           f"the Stokes value kT/(6 pi eta R) = {D0_STOKES:.6g} sigma^2/t0 for R = 4.25 (the study proper divides by D3's extrapolated D_0 at "
           "the same xi_bead, which a manifest cannot pass between studies: rescale S by that ratio). "
-        + (f"lambda = 0.5 (R_pore = 8.5), L_xy = 32, L_z = 24 (reduced), xi_bead = 1000, {replicas} runs of {steps} MD steps." if smoke else
+        + (f"lambda = 0.5 (R_pore = 8.5), L_xy = 32, L_z = 24 (reduced), xi_bead = 1000, {replicas} runs of {steps} MD steps; the "
+           f"single-layer ablation (stages lb_single, pore_single) the same with {steps_single} MD steps per run, drawn over the "
+           f"xi_bead = {ABLATION_XI} row of the panel." if smoke else
            f"lambda 0.1 ... 0.5, xi_bead 50, 200, 1000, L_z = {l_z}, L_xy = 2(R_pore + r_p) + 2 rounded up; 1.2 x 10^6 recordings each. "
            "Ablation (spec 40 §6): the single-layer filled raspberry (raspberries.layers single: no outer hydrodynamic-only layer), "
-           "xi_bead = 1000, in every pore (stages lb_single, pore_single; its plots next to the xi_bead = 1000 ones). The S_z plots "
-           "carry the centreline K(lambda) of Haberman-Sayre and Bohlin at beta = 0 (spec 70 §7.4, external)."),
+           f"xi_bead = {ABLATION_XI}, in every pore (stages lb_single, pore_single), drawn over the xi_bead = {ABLATION_XI} row of the S "
+           "panel (rows xi_bead, columns S_x, S_y, S_z). The S_z column carries the centreline K(lambda) of Haberman-Sayre and Bohlin "
+           "at beta = 0 (spec 70 §7.4, external)."),
         "replicas": replicas,
         "grid": grid,
         "zip": [["R_pore", "L_xy"]],
@@ -282,10 +288,10 @@ def pore_manifest(smoke):
         ] + ablation_stages,
         "report": {
             "title": "D5" + (" smoke" if smoke else "") + ": enhanced drag in a cylindrical pore",
-            "scalars": [{"stage": "pore", "names": ["S_*_centreline"], "caption": "S_i of the sub-trajectories starting near the axis (beta < 0.1)"}]
-            + ([{"stage": "pore_single", "names": ["S_*_centreline"], "caption": "ablation (single layer, xi_bead = 1000): S_i near the axis"}]
-               if not smoke else []),
-            "plots": per_component + ablation_plots,
+            "scalars": [{"stage": "pore", "names": ["S_*_centreline"], "caption": "S_i of the sub-trajectories starting near the axis (beta < 0.1)"},
+                        {"stage": "pore_single", "names": ["S_*_centreline"],
+                         "caption": f"ablation (single layer, xi_bead = {ABLATION_XI}): S_i near the axis"}],
+            "plots": [pore_panel(smoke)],
         },
     }
 
@@ -521,11 +527,15 @@ def viscosity_manifest(smoke):
                                                          "xi_r_water", "stability"],
                          "caption": "per fluid and box: D (run's units), the Stokes ratios of the box, frictions in water units, "
                                     "dt sum(xi_bead)/m"}],
-            "plots": [{"name": f"{kind}_ratio_pairs", "stage": "diffusion", "scalar": scalar, "x": "nu", "series": "L",
+            "plots": [{"name": f"{kind}_ratio_bars", "stage": "diffusion", "scalar": scalar, "groups": "L", "bars": "nu",
                        "theory": [{"kind": "constant", "value": 1, "label": label}],
-                       "xlabel": "nu (sigma^2/t0): water 5.6757, scaled 0.8", "ylabel": scalar,
-                       "title": f"{'Translational' if kind == 't' else 'Rotational'} friction in the two fluids (per box)"}
-                      for kind, scalar, label in (("t", "xi_t_over_6pi_eta_R", "Stokes"), ("r", "xi_r_over_8pi_eta_R3", "SED"))],
+                       "xlabel": "box edge L (nm)", "ylabel": ylabel,
+                       "title": f"{'Translational' if kind == 't' else 'Rotational'} friction per box: water (nu = {NU_WATER}, xi unscaled) "
+                                f"and nu = {NU_SIM} (xi scaled)",
+                       "caption": f"Paired bars per box: nu = {NU_WATER} is water (xi_bead unscaled), nu = {NU_SIM} spec 40's fluid "
+                                  "(xi_bead scaled by s); the ratios are the same in water units. Error bars: the standard errors."}
+                      for kind, scalar, label, ylabel in (("t", "xi_t_over_6pi_eta_R", "Stokes", "xi^t / (6 pi eta R)"),
+                                                          ("r", "xi_r_over_8pi_eta_R3", "SED", "xi^r / (8 pi eta R^3)"))],
             "raspberry": {"stage": "diffusion", "box": "L"},
         },
     }
@@ -535,17 +545,22 @@ write("lb_viscosity_scaling-smoke", viscosity_manifest(True))
 write("lb_viscosity_scaling", viscosity_manifest(False))
 
 def hasimoto_free_sphere_validation():
-    """D3 at one radius and reduced length: a free raspberry sphere R = 2.25 (xi_bead = 50) in boxes 16, 20, 24,
-    4 runs of 1e4 t0 each, D_t over spec 40's window 0.5 ... 2 L^2/nu: the Hasimoto line's slope and D_0."""
+    """D3 at one radius and reduced length: a free raspberry sphere R = 2.25 (xi_bead = 50) in boxes 12, 16, 24 of a fluid
+    ten times as viscous as spec 40's, 4 runs of 1e4 t0 each, D_t over spec 40's window 0.5 ... 2 L^2/nu: the Hasimoto
+    line's slope and D_0."""
+    boxes, nu = [12, 16, 24], 8
+    tau = 0.5 + 3 * 0.016 * nu / NU_SIM  # lattice relaxation time (nu = 0.8 is 0.016 in lattice units, D1)
     m = sphere_sweep_manifest(False)
-    m.update({"study": "lb_hasimoto_free_sphere", "grid": {"d": [4.5], "xi_bead": [50], "L": [16, 20, 24]}, "replicas": 4})
+    m.update({"study": "lb_hasimoto_free_sphere", "grid": {"d": [4.5], "xi_bead": [50], "L": boxes}, "replicas": 4})
     del m["zip"]
     m["stages"] = diffusion_stages({"type": "sphere", "diameter": "${grid.d}"}, 121, "${grid.xi_bead}", 1_000_000, None, None)
+    m["stages"][1]["params"]["fluid"] = {"viscosity": nu}
     m["description"] = ("Validation (docs/validation.md): the finite-size law of spec 40 §8.1 for a free raspberry sphere, R = 2.25, "
-                        "xi_bead = 50 nominal, in periodic boxes 16, 20, 24 of the fluctuating fluid (rho = 6.004, nu = 0.8, kT = 1), "
-                        "4 runs of 1e4 t0 per box; D_t over spec 40's window 0.5 ... 2 L^2/nu; the report's Hasimoto line of D_t "
-                        "against 1/L (its slope against -2.837297 kT/(6 pi eta)) and D_0, and D_r over the boxes. D3 at one radius and "
-                        "a twentieth of its length.")
+                        f"xi_bead = 50 nominal, in periodic boxes {', '.join(map(str, boxes))} of the fluctuating fluid (rho = 6.004, "
+                        f"nu = {nu}, kT = 1), 4 runs of 1e4 t0 per box; D_t over spec 40's window 0.5 ... 2 L^2/nu; the report's Hasimoto "
+                        "line of D_t against 1/L (its slope against -2.837297 kT/(6 pi eta)) and D_0, and D_r over the boxes. nu is ten "
+                        f"times spec 40's {NU_SIM} (lattice tau {tau:.2f}): the window, and so the error of D_t at a given run length, "
+                        "shrinks by sqrt(10), while the Hasimoto correction 2.837 R_h/L does not depend on nu.")
     m["report"] = {"title": "Validation: D_t(L) of a free raspberry sphere", "scalars": m["report"]["scalars"],
                    "plots": [hasimoto_plot("D_t_hasimoto_fit", {}, "Finite-size extrapolation of D_t (R = 2.25, xi_bead = 50)")],
                    "raspberry": {"stage": "diffusion", "box": "L"}}

@@ -265,8 +265,10 @@ THEORY_KINDS = {"constant", "linear", "power", "exponential", "free_diffusion", 
 # The keys each report item reads (report.py): anything else would be silently ignored.
 SCALAR_BLOCK_KEYS = {"stage", "names", "caption"}
 PLOT_KEYS = {"name", "stage", "select", "log", "xlabel", "ylabel", "title", "caption", "theory"}
-TABLE_PLOT_KEYS = PLOT_KEYS | {"table", "x", "y", "errors"}
+TABLE_PLOT_KEYS = PLOT_KEYS | {"table", "x", "y", "errors", "rows", "overlay"}
+OVERLAY_KEYS = {"stage", "select", "label", "row"}
 SCALAR_PLOT_KEYS = PLOT_KEYS | {"scalar", "x", "x_scale", "x_power", "y_scale", "series"}
+BAR_PLOT_KEYS = PLOT_KEYS | {"scalar", "groups", "bars", "y_scale"}
 SERIES_PLOT_KEYS = (PLOT_KEYS - {"stage"}) | {"x", "x_scale", "x_power", "y_scale", "series"}  # "series": a list of entries, each its own stage
 SERIES_ENTRY_KEYS = {"stage", "scalar", "label", "select", "band", "x_scale", "y_scale", "at_x"}
 THEORY_KEYS = {"constant": {"value"}, "linear": {"intercept", "slope"}, "power": {"prefactor", "exponent"},
@@ -323,6 +325,44 @@ def check_series_entries(item, p, stages, grid):
                 raise ManifestError(f"{q}.at_x", "a number: the x coordinate of the entry's one grid point", e["at_x"])
             if "x_scale" in e:
                 raise ManifestError(f"{q}.x_scale", "no 'x_scale': it has no effect with at_x (the point is drawn at at_x)")
+
+
+def check_panel(item, p, stages, grid):
+    """A curve plot's `rows` (a panel: a row of subplots per value of that grid variable, a column per y) and
+    `overlay` (a second stage's curves drawn over the plot's, in every row or in the one named by `row`)."""
+    if "rows" in item and item["rows"] not in grid:
+        raise ManifestError(f"{p}.rows", "a grid variable: a row of subplots per value (" + (", ".join(grid) or "the manifest has none") + ")",
+                            item["rows"])
+    if "overlay" not in item:
+        return
+    q = f"{p}.overlay"
+    over = item["overlay"]
+    if not isinstance(over, dict):
+        raise ManifestError(q, "an object {stage, select, label, row}", over)
+    check_keys(over, OVERLAY_KEYS, q, "in an overlay")
+    if over.get("stage") not in stages:
+        raise ManifestError(f"{q}.stage", "the name of a stage of this manifest (whose table the overlay draws)", over.get("stage"))
+    if not isinstance(over.get("label", ""), str):
+        raise ManifestError(f"{q}.label", "a text (the overlay's name in the legend)", over.get("label"))
+    check_select(over.get("select", {}), f"{q}.select", grid)
+    if "row" in over:
+        if "rows" not in item:
+            raise ManifestError(f"{q}.row", "no 'row': it has no effect, the plot is not a panel (no 'rows')")
+        if format_value(over["row"]) not in [format_value(v) for v in grid[item["rows"]]]:
+            raise ManifestError(f"{q}.row", f"a value of grid.{item['rows']} (the panel row to draw the overlay in)", over["row"])
+
+
+def check_bars(item, p, grid):
+    """A bar plot's `groups` (a group of bars along x per value) and `bars` (a bar per value in each group)."""
+    for key in ("groups", "bars"):
+        if item.get(key) not in grid:
+            raise ManifestError(f"{p}.{key}", "a grid variable (" + (", ".join(grid) or "the manifest has none") + ")", item.get(key))
+    if item["groups"] == item["bars"]:
+        raise ManifestError(f"{p}.bars", "a grid variable other than groups", item["bars"])
+    if "y_scale" in item and (not is_number(item["y_scale"]) or item["y_scale"] == 0 or not math.isfinite(item["y_scale"])):
+        raise ManifestError(f"{p}.y_scale", "a non-zero number (the scalars and their errors are multiplied by it)", item["y_scale"])
+    if "x" in item.get("log", ""):
+        raise ManifestError(f"{p}.log", "'y' or '' on a bar plot (its x axis holds the groups)", item["log"])
 
 
 def validate_raspberry(item, m):
@@ -404,9 +444,14 @@ def validate_report(m):
                 continue
             if ("table" in item) + ("scalar" in item) + listed != 1:
                 raise ManifestError(p, "one of 'table' (curves against a column), 'scalar' (a stage's scalar against a grid "
-                                       "variable) or 'series' as a list of {stage, scalar} (several scalars against a grid variable)")
+                                       "variable, or as grouped bars with 'bars') or 'series' as a list of {stage, scalar} "
+                                       "(several scalars against a grid variable)")
             if "table" in item:
                 check_keys(item, TABLE_PLOT_KEYS, p, "in a table plot")
+                check_panel(item, p, stages, grid)
+            elif "bars" in item:
+                check_keys(item, BAR_PLOT_KEYS, p, "in a bar plot")
+                check_bars(item, p, grid)
             elif listed:
                 check_keys(item, SERIES_PLOT_KEYS, p, "in a scalar plot whose series is a list (each entry names its stage)")
                 check_series_entries(item, p, stages, grid)
@@ -421,7 +466,7 @@ def validate_report(m):
                 for axis_key in ("x", "x_scale", "x_power"):
                     if axis_key in item:
                         raise ManifestError(f"{p}.{axis_key}", f"no '{axis_key}': it has no effect, every entry gives its own at_x")
-            if "table" not in item and not fixed_x:
+            if "table" not in item and "bars" not in item and not fixed_x:
                 for axis in ("x", "series") if "scalar" in item else ("x",):
                     value = item.get(axis)
                     if (axis == "x" or axis in item) and (not isinstance(value, str) or value not in grid):
@@ -446,7 +491,14 @@ def validate_report(m):
                 if not isinstance(t, dict) or t.get("kind") not in THEORY_KINDS:
                     raise ManifestError(f"{p}.theory[{j}].kind", "one of " + ", ".join(sorted(THEORY_KINDS)),
                                         t.get("kind") if isinstance(t, dict) else t)
-                check_keys(t, THEORY_KEYS[t["kind"]] | {"kind", "label"}, f"{p}.theory[{j}]", f"on a '{t['kind']}' line")
+                if "columns" in t and "rows" not in item:
+                    raise ManifestError(f"{p}.theory[{j}].columns", "no 'columns': it has no effect, the plot is not a panel (no 'rows')")
+                check_keys(t, THEORY_KEYS[t["kind"]] | {"kind", "label", "columns"}, f"{p}.theory[{j}]", f"on a '{t['kind']}' line")
+                if "columns" in t and (not isinstance(t["columns"], list) or not t["columns"] or any(c not in item["y"] for c in t["columns"])):
+                    raise ManifestError(f"{p}.theory[{j}].columns", "a non-empty list of the plot's y columns (whose subplots draw the line)",
+                                        t["columns"])
+                if "bars" in item and t["kind"] != "constant":
+                    raise ManifestError(f"{p}.theory[{j}].kind", "'constant' on a bar plot (its x axis holds groups, not values)", t["kind"])
                 if t["kind"] == "fit_line" and "table" in item:
                     raise ManifestError(f"{p}.theory[{j}].kind", "a fitted line ('fit_line') only on a scalar plot (it fits the plotted scalars)",
                                         t["kind"])

@@ -273,70 +273,198 @@ class Report:
     # --- plots ----------------------------------------------------------------------------
     def plot(self, spec, k):
         import matplotlib.pyplot as plt
-        self.drawn, self.notes = [], []  # the scalar points drawn, and text a fitted line leaves under the plot
         where = f"report.plots[{k}]"
         name = spec.get("name", f"plot{k}")
+        fig = self.figure(spec, where, name)
+        png = f"{name}.png"
+        fig.savefig(os.path.join(self.out, png), dpi=110, bbox_inches="tight")  # "tight" keeps a panel's legend beside it
+        plt.close(fig)
+        return ([f"### {spec.get('title', name)}", "", f"![{name}]({png})", ""] + ([spec["caption"], ""] if "caption" in spec else [])
+                + [line for note in self.notes for line in (note, "")])
+
+    def figure(self, spec, where, name=""):
+        """The plot's figure: a panel for a curve plot with rows, else one set of axes of the plot's kind."""
+        import matplotlib.pyplot as plt
+        self.drawn, self.notes = [], []  # the scalar points drawn, and text a fitted line leaves under the plot
+        if "table" in spec and "rows" in spec:
+            return self.panel(spec, where)
         fig, ax = plt.subplots(figsize=(6.4, 4.6))
-        if "table" in spec:
-            self.curve_plot(ax, spec, where)
-        elif "scalar" in spec or isinstance(spec.get("series"), list):
-            self.scalar_plot(ax, spec, where)
-        else:
+        try:
+            if "table" in spec:
+                self.curve_plot(ax, spec, where)
+            elif "bars" in spec:
+                self.bar_plot(ax, spec, where)
+            elif "scalar" in spec or isinstance(spec.get("series"), list):
+                self.scalar_plot(ax, spec, where)
+            else:
+                raise ReportError(f"{where}: expected 'table' (curves), 'scalar' or a 'series' list (scalars against a grid variable)")
+        except BaseException:
             plt.close(fig)
-            raise ReportError(f"{where}: expected 'table' (curves), 'scalar' or a 'series' list (scalars against a grid variable)")
-        log = spec.get("log", "")
-        if "x" in log:
-            ax.set_xscale("log")
-        if "y" in log:
-            ax.set_yscale("log")
-        ax.set_xlabel(spec.get("xlabel", spec.get("x", "")))
+            raise
+        self.log_axes(ax, spec)
+        ax.set_xlabel(spec.get("xlabel", spec.get("x", spec.get("groups", ""))))
         ax.set_ylabel(spec.get("ylabel", ", ".join(spec["y"]) if "table" in spec else
                                spec.get("scalar") or ", ".join(e.get("label", e["scalar"]) for e in spec["series"])))
         ax.set_title(spec.get("title", name))
         if ax.get_legend_handles_labels()[0]:
             ax.legend(fontsize=7)
         fig.tight_layout()
-        png = f"{name}.png"
-        fig.savefig(os.path.join(self.out, png), dpi=110)
-        plt.close(fig)
-        return ([f"### {spec.get('title', name)}", "", f"![{name}]({png})", ""] + ([spec["caption"], ""] if "caption" in spec else [])
-                + [line for note in self.notes for line in (note, "")])
+        return fig
+
+    @staticmethod
+    def log_axes(ax, spec):
+        log = spec.get("log", "")
+        if "x" in log:
+            ax.set_xscale("log")
+        if "y" in log:
+            ax.set_yscale("log")
+
+    def panel(self, spec, where):
+        """A curve plot with `rows`: a subplot per value of that grid variable (rows) and y column (columns), each
+        curve coloured by its grid point alike in every subplot, one legend for the figure. x is shared, and y
+        along a column, so that the rows compare one quantity (D5: S_x, S_y, S_z per xi_bead)."""
+        import matplotlib.pyplot as plt
+        from matplotlib.container import Container
+        var, ys = spec["rows"], spec["y"]
+        jobs = self.selected_jobs(spec, where)
+        values = [v for v in self.m["grid"][var] if any(format_value(j.point.get(var)) == format_value(v) for j in jobs)]
+        if not values:
+            raise ReportError(f"{where}.rows: no selected grid point of stage '{spec['stage']}' has a value of '{var}' "
+                              "(the stage does not depend on it, or select excludes every point)")
+        varying = [v for v in self.m.get("grid", {}) if v != var and len({format_value(j.point.get(v)) for j in jobs}) > 1]
+        fig, axes = plt.subplots(len(values), len(ys), figsize=(3.4 * len(ys), 2.6 * len(values) + 0.6), sharex=True, sharey="col",
+                                 squeeze=False)
+        palette = {}  # one colour per grid point across the subplots
+        try:
+            for r, value in enumerate(values):
+                for c, y in enumerate(ys):
+                    ax = axes[r][c]
+                    self.curve_plot(ax, spec, where, {**spec.get("select", {}), var: value}, [y], varying, palette, value)
+                    self.log_axes(ax, spec)
+                    ax.set_title(f"{y}, {var} = {format_value(value)}", fontsize=9)
+                axes[r][0].set_ylabel(spec.get("ylabel", ", ".join(ys)))
+        except BaseException:
+            plt.close(fig)
+            raise
+        for ax in axes[-1]:
+            ax.set_xlabel(spec.get("xlabel", spec.get("x", "time")))
+        fig.suptitle(spec.get("title", spec.get("name", "")))
+        fig.tight_layout()
+        legend = {}  # label -> handle, once for the figure (a curve recurs in every column)
+        for ax in axes.flat:
+            for handle, label in zip(*ax.get_legend_handles_labels()):
+                legend.setdefault(label, handle)
+        # curves (error-bar containers) before the theory points, which matplotlib lists first as plain lines
+        legend = dict(sorted(legend.items(), key=lambda item: not isinstance(item[1], Container)))
+        if legend:
+            fig.legend(legend.values(), legend.keys(), loc="center left", bbox_to_anchor=(1.0, 0.5), fontsize=7)
+        return fig
 
     def selected_jobs(self, spec, where, select=None):
         jobs = self.stage_jobs(spec.get("stage"), where)
         sel = spec.get("select", {}) if select is None else select
         return [j for j in jobs if all(format_value(j.point.get(v)) == format_value(val) for v, val in sel.items() if v in j.point)]
 
-    def curve_plot(self, ax, spec, where):
-        import numpy as np
-        ys = spec.get("y")
+    def curve_plot(self, ax, spec, where, select=None, ys=None, varying=None, palette=None, row=None):
+        """Columns ys (default the plot's y) of the stage's table against x, a curve per selected grid point and column;
+        the overlay's curves over them in the same colours, dashed; then the theory lines. A panel passes its subplot's
+        select, column, row value, the variables its legend names (varying) and the colours of its curves (palette)."""
+        ys = ys or spec.get("y")
         if not isinstance(ys, list) or not ys:
             raise ReportError(f"{where}.y: expected a list of column names")
-        jobs = self.selected_jobs(spec, where)
-        varying = self.varying = [v for v in self.m.get("grid", {}) if len({format_value(j.point.get(v)) for j in jobs}) > 1]
-        curves = {}  # job id -> (job, x values drawn)
+        jobs = self.selected_jobs(spec, where, select)
+        if varying is None:
+            varying = [v for v in self.m.get("grid", {}) if len({format_value(j.point.get(v)) for j in jobs}) > 1]
+        self.varying = varying
+        palette = {} if palette is None else palette
+        curves = {}  # job id -> (job, x values drawn, colour)
         for job in jobs:
-            data, _ = read_table(self.path(job), spec["table"])
-            x = spec.get("x", "time")
-            if x not in data:
-                raise ReportError(f"{where}.x: table '{spec['table']}' has no column '{x}' (columns: {', '.join(data)})")
             for y in ys:
-                if y not in data:
-                    raise ReportError(f"{where}.y: table '{spec['table']}' has no column '{y}' (columns: {', '.join(data)})")
-                where_text = point_text({v: job.point[v] for v in varying if v in job.point})
-                label = y if len(jobs) == 1 or not varying else f"{y} [{where_text}]"
-                err = data.get(y + "_se") if spec.get("errors", True) else None
-                ok = np.isfinite(data[x]) & np.isfinite(data[y])
-                if err is not None:
-                    ax.errorbar(data[x][ok], data[y][ok], yerr=np.nan_to_num(err[ok]), label=label, marker=".", ms=3, lw=1, capsize=1.5)
-                else:
-                    ax.plot(data[x][ok], data[y][ok], label=label, marker=".", ms=3, lw=1)
-                curves[job.id] = (job, data[x][ok])
-        # a free-particle line per grid point (its species' D); any other overlay once
+                point = point_text({v: job.point[v] for v in varying if v in job.point})
+                # in a panel the column names y: a curve is its grid point (or its stage, when one point is drawn)
+                label = (y if len(jobs) == 1 or not varying else f"{y} [{point}]") if row is None else point if varying else spec["stage"]
+                colour = palette.setdefault((point, y if len(ys) > 1 else ""), f"C{len(palette) % 10}")
+                xs = self.curve(ax, spec, job, y, where, label, color=colour)
+                curves[job.id] = (job, xs, colour)
+        over = spec.get("overlay")
+        if over is not None and (row is None or "row" not in over or format_value(over["row"]) == format_value(row)):
+            self.overlay(ax, spec, over, where, {**(spec.get("select", {}) if select is None else select), **over.get("select", {})},
+                         ys, varying, palette)
+        # a free-particle line per grid point (its species' D); any other overlay once; in a panel, in its columns only
         for t in spec.get("theory", []):
+            if "columns" in t and not set(ys) & set(t["columns"]):
+                continue
             per_curve = t.get("kind") in ("free_diffusion", "pore_centreline")  # drawn for each curve's grid point
-            for job, xs in list(curves.values())[:None if per_curve else 1]:
-                self.theory(ax, t, job, xs, where)
+            for job, xs, colour in list(curves.values())[:None if per_curve else 1]:
+                self.theory(ax, t, job, xs, where, colour)
+
+    def curve(self, ax, spec, job, y, where, label, **style):
+        """One column y of the job's table against x, with error bars from <y>_se unless errors is false; the x drawn."""
+        import numpy as np
+        data, _ = read_table(self.path(job), spec["table"])
+        x = spec.get("x", "time")
+        if x not in data:
+            raise ReportError(f"{where}.x: table '{spec['table']}' has no column '{x}' (columns: {', '.join(data)})")
+        if y not in data:
+            raise ReportError(f"{where}.y: table '{spec['table']}' has no column '{y}' (columns: {', '.join(data)})")
+        err = data.get(y + "_se") if spec.get("errors", True) else None
+        ok = np.isfinite(data[x]) & np.isfinite(data[y])
+        style = {"marker": ".", "ms": 3, "lw": 1, **style}
+        if err is not None:
+            ax.errorbar(data[x][ok], data[y][ok], yerr=np.nan_to_num(err[ok]), label=label, capsize=1.5, **style)
+        else:
+            ax.plot(data[x][ok], data[y][ok], label=label, **style)
+        return data[x][ok]
+
+    def overlay(self, ax, spec, over, where, select, ys, varying, palette):
+        """The overlay stage's curves (the same table and columns; D5: the single-layer ablation over xi_bead = 1000),
+        dashed with open markers, each in the colour of the plot's curve at the same values of the varying variables."""
+        jobs = self.selected_jobs(over, f"{where}.overlay", select)
+        own = [v for v in self.m.get("grid", {}) if len({format_value(j.point.get(v)) for j in jobs}) > 1]
+        label = over.get("label", over["stage"])
+        for job in jobs:
+            for y in ys:
+                point = point_text({v: job.point[v] for v in varying if v in job.point})
+                colour = palette.setdefault((point, y if len(ys) > 1 else ""), f"C{len(palette) % 10}")
+                text = point_text({v: job.point[v] for v in own})
+                self.curve(ax, spec, job, y, f"{where}.overlay", (f"{y}, " if len(ys) > 1 else "") + label + (f" [{text}]" if own else ""),
+                           color=colour, ls="--", marker="o", mfc="none", ms=3.5)
+
+    def bar_plot(self, ax, spec, where):
+        """The stage's scalar ± SE as grouped bars: a group along x per value of the grid variable `groups`, in it a
+        bar per value of `bars` side by side (D6: the two fluids per box), each bar labelled with its value."""
+        import numpy as np
+        grid, y_scale = self.m.get("grid", {}), spec.get("y_scale", 1.0)
+        cells = {}  # (group value, bar value) -> (value, SE, job)
+        for job in self.selected_jobs(spec, where):
+            for key in ("groups", "bars"):
+                if spec[key] not in job.point:
+                    raise ReportError(f"{where}.{key}: stage '{spec['stage']}' does not depend on the grid variable '{spec[key]}'")
+            scalars = read_scalars(self.path(job))
+            if spec["scalar"] not in scalars:
+                raise ReportError(f"{where}.scalar: stage '{spec['stage']}' has no scalar '{spec['scalar']}' ({', '.join(scalars)})")
+            cell = (format_value(job.point[spec["groups"]]), format_value(job.point[spec["bars"]]))
+            if cell in cells:
+                differ = [v for v in grid if format_value(job.point.get(v)) != format_value(cells[cell][2].point.get(v))]
+                raise ReportError(f"{where}: several grid points at {spec['groups']} = {cell[0]}, {spec['bars']} = {cell[1]} "
+                                  f"(they differ in {', '.join(differ)}); pick one with select")
+            v, e = scalars[spec["scalar"]][:2]
+            cells[cell] = (v * y_scale, e * abs(y_scale), job)
+        if not cells:  # as for a scalar plot: a select no grid point matches (e.g. in a smoke variant) draws nothing
+            return
+        groups = [g for g in map(format_value, grid[spec["groups"]]) if any(c[0] == g for c in cells)]
+        bars = [b for b in map(format_value, grid[spec["bars"]]) if any(c[1] == b for c in cells)]
+        width = 0.8 / len(bars)
+        for j, b in enumerate(bars):
+            at = [i for i, g in enumerate(groups) if (g, b) in cells]
+            values = [cells[(groups[i], b)] for i in at]
+            drawn = ax.bar([i + (j - (len(bars) - 1) / 2) * width for i in at], [v for v, _, _ in values], width * 0.95,
+                           yerr=np.nan_to_num([e for _, e, _ in values]), capsize=3, label=f"{spec['bars']} = {b}")
+            ax.bar_label(drawn, fmt="%.3g", fontsize=7, padding=2)
+        ax.set_xticks(range(len(groups)), groups)
+        ax.set_xlim(-0.7, len(groups) - 0.3)  # room either side, so that a single group's bars are not stretched edge to edge
+        for t in spec.get("theory", []):
+            self.theory(ax, t, None, np.arange(len(groups), dtype=float), where)
 
     def scalar_plot(self, ax, spec, where):
         """Scalars ± SE against the grid variable `x` (times `x_scale`, to the power `x_power`): one stage's scalar, one series per
@@ -459,7 +587,9 @@ class Report:
         return float([format_value(v) for v in self.m["grid"][var]].index(format_value(value)))
 
     # --- theory overlays (spec 70) ---------------------------------------------------------
-    def theory(self, ax, t, job, xs, where):
+    def theory(self, ax, t, job, xs, where, colour=None):
+        """One theory line over x values xs; job is the curve's (or the plot's first), colour the curve's (a point
+        of that curve's grid point, such as the pore centreline, takes it, so that several pores can be told apart)."""
         import numpy as np
         kind = t.get("kind")
         if len(xs) == 0:
@@ -522,7 +652,8 @@ class Report:
             lam = t["radius"] / float(pore)
             formula = t.get("formula", "haberman_sayre")
             hs = formula == "haberman_sayre"
-            ax.plot([0.0], [FORMULAS[formula](lam)], marker="*" if hs else "D", ms=10 if hs else 6, ls="none", color="k" if hs else "0.55", zorder=3,
+            ax.plot([0.0], [FORMULAS[formula](lam)], marker="*" if hs else "D", ms=10 if hs else 6, ls="none", zorder=3,
+                    color=colour or ("k" if hs else "0.55"), mec="k", mew=0.6,
                     label=t.get("label", f"{LABELS[formula]} (external), lambda = {lam:.3g}"))
         elif kind == "spheroid":
             # x = phi = a/c: a factor of spec 40 §8.6 (A, B, t_ax, t_perp, r_ax, r_perp, t_ratio, r_ratio), times `scale`.

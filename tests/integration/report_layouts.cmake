@@ -1,0 +1,1 @@
+anisodyn_add_script_test(report_layouts report_layouts.py)
