@@ -29,9 +29,6 @@
 // Environment, for the measurements in docs/bd.md only: ANISODYN_BD_EQ_DT (Δt, default 5e-4),
 // ANISODYN_BD_EQ_SNAPSHOTS (K, default 32), ANISODYN_BD_EQ_SEED (added to every seed, default 0).
 #include <gtest/gtest.h>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #include <Eigen/Eigenvalues>
 #include <chrono>
@@ -49,6 +46,7 @@
 #include "anisodyn/interactions/overlap_volume.hpp"
 #include "anisodyn/interactions/pair_force_field.hpp"
 #include "anisodyn/interactions/rod_overlap_pairs.hpp"
+#include "thread_count.hpp"
 
 using namespace anisodyn;
 
@@ -345,9 +343,7 @@ std::vector<Statistic> statistics() {
 }  // namespace
 
 TEST(BdEquilibrium, BrownianDynamicsKeepsTheBoltzmannDistributionOfAnIndependentMonteCarlo) {
-#ifdef _OPENMP
-  omp_set_num_threads(1);  // one core; results do not depend on it
-#endif
+  const testing_support::ScopedThreadCount one_thread(1);  // one core; results do not depend on it
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
   const RodSystem sys;

@@ -13,6 +13,7 @@
 #endif
 
 #include "capacitance_bodies.hpp"
+#include "thread_count.hpp"
 
 using namespace anisodyn;
 using namespace anisodyn::testing_support;
@@ -209,12 +210,9 @@ TEST(CapacitanceWalk, CubeMatchesHwangMascagniFromTwoLaunchEllipsoids) {
 TEST(CapacitanceWalk, ResultDoesNotDependOnTheThreadCount) {
 #ifdef _OPENMP
   const CylinderBody cyl(4.0, 1.0);
-  const int threads = omp_get_max_threads();
-  omp_set_num_threads(1);
-  const auto one = walk_on_spheres_capacitance(cyl, launch_for(cyl), cylinder_charges(cyl), walks(20000, 41));
-  omp_set_num_threads(std::max(2, threads));
-  const auto many = walk_on_spheres_capacitance(cyl, launch_for(cyl), cylinder_charges(cyl), walks(20000, 41));
-  omp_set_num_threads(threads);
+  const auto capacitance = [&] { return walk_on_spheres_capacitance(cyl, launch_for(cyl), cylinder_charges(cyl), walks(20000, 41)); };
+  const auto one = with_threads(1, capacitance);
+  const auto many = with_threads(std::max(2, omp_get_max_threads()), capacitance);
   EXPECT_EQ(one.value, many.value);
   EXPECT_EQ(one.hits, many.hits);
 #else

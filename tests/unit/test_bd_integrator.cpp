@@ -9,10 +9,6 @@
 // - bad settings are refused.
 #include <gtest/gtest.h>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -24,6 +20,7 @@
 #include "anisodyn/core/quaternion.hpp"
 #include "anisodyn/core/rng.hpp"
 #include "anisodyn/core/statistics.hpp"
+#include "thread_count.hpp"
 
 using namespace anisodyn;
 
@@ -150,15 +147,12 @@ TEST(BdIntegrator, CapsClipTheSystematicForceAndTorqueByNormAndCountThem) {
 
 TEST(BdIntegrator, SameBitsForAnyThreadCountAndFromACopyOfTheState) {
   const auto run = [](int threads, int steps) {
-#ifdef _OPENMP
-    omp_set_num_threads(threads);
-#else
-    (void)threads;
-#endif
-    State s = rods(3000, true);
-    BdIntegrator bd(settings(1e-3), constant(Vec3(1, 2, 3), Vec3(0.5, 0, 1)));
-    advance(bd, s, steps);
-    return s;
+    return testing_support::with_threads(threads, [&] {
+      State s = rods(3000, true);
+      BdIntegrator bd(settings(1e-3), constant(Vec3(1, 2, 3), Vec3(0.5, 0, 1)));
+      advance(bd, s, steps);
+      return s;
+    });
   };
   const State one = run(1, 20), two = run(2, 20);
   EXPECT_EQ(one.particles.x, two.particles.x);

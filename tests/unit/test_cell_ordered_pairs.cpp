@@ -4,10 +4,6 @@
 // rebuilt from built_positions() identical to the original.
 #include <gtest/gtest.h>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include <algorithm>
 #include <random>
 #include <set>
@@ -15,6 +11,7 @@
 #include <vector>
 
 #include "anisodyn/neighbors/cell_ordered_pairs.hpp"
+#include "thread_count.hpp"
 
 using namespace anisodyn;
 
@@ -75,9 +72,7 @@ std::set<std::pair<int, int>> listed(const CellOrderedPairs& list) {
 TEST(CellOrderedPairs, ThePairsOfABruteForceSearch) {
   // On 1, 2 and 3 threads: the rows and the lower pairs are built in blocks, one per thread.
   for (int threads : {1, 2, 3}) {
-#ifdef _OPENMP
-    omp_set_num_threads(threads);
-#endif
+    const testing_support::ScopedThreadCount count(threads);
     SCOPED_TRACE(std::to_string(threads) + " threads");
     const double cutoff = 1.0, skin = 0.3;
     const std::vector<Vec3> boxes = {Vec3(2.6, 2.6, 2.6), Vec3(3.0, 3.0, 3.0), Vec3(4.0, 5.3, 2.7), Vec3(8.0, 8.0, 8.0), Vec3(11.0, 6.5, 9.2)};
@@ -95,9 +90,6 @@ TEST(CellOrderedPairs, ThePairsOfABruteForceSearch) {
       EXPECT_EQ(list.pairs(), expected.size());
     }
   }
-#ifdef _OPENMP
-  omp_set_num_threads(omp_get_num_procs());
-#endif
 }
 
 TEST(CellOrderedPairs, RebuildsOnceAParticleMovedHalfTheSkin) {

@@ -6,14 +6,11 @@
 #include <cmath>
 #include <vector>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include "anisodyn/core/box.hpp"
 #include "anisodyn/core/ordered_sum.hpp"
 #include "anisodyn/core/quaternion.hpp"
 #include "anisodyn/core/rng.hpp"
+#include "thread_count.hpp"
 
 using namespace anisodyn;
 
@@ -145,15 +142,10 @@ TEST(OrderedSum, TheSameBitsForAnyThreadCountAndTheChunkedSerialSum) {
   for (const double t : term) plain += t;
   EXPECT_NE(want, plain) << "the terms do not tell one association from another";
   for (int threads : {1, 2, 3}) {
-#ifdef _OPENMP
-    omp_set_num_threads(threads);
-#endif
+    const testing_support::ScopedThreadCount count(threads);
     EXPECT_EQ(ordered_sum(n, 0.0, [&](std::size_t i) { return term[i]; }), want) << threads << " threads";
     const Mat3 m = ordered_sum(n, Mat3::Zero().eval(), [&](std::size_t i) -> Mat3 { return term[i] * Mat3::Identity(); });
     EXPECT_EQ(m(1, 1), want);
   }
   EXPECT_EQ(ordered_sum(0, 1.5, [&](std::size_t) { return 1.0; }), 1.5) << "no terms: the zero given";
-#ifdef _OPENMP
-  omp_set_num_threads(omp_get_num_procs());
-#endif
 }

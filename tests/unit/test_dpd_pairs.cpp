@@ -6,16 +6,11 @@
 
 #include <cmath>
 
-#include <omp.h>
-
 #include "anisodyn/core/keyed_random.hpp"
 #include "anisodyn/core/pair_noise.hpp"
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 #include "anisodyn/core/rng.hpp"
 #include "anisodyn/interactions/dpd_pairs.hpp"
+#include "thread_count.hpp"
 
 using namespace anisodyn;
 
@@ -157,13 +152,10 @@ TEST(DpdPairs, PairNoiseIsSymmetricUnitNormalAndNewEachStep) {
 
 TEST(DpdPairs, ForcesAreTheSameBitsForOneAndTwoThreads) {
   const State s = liquid(1536, 8.0, 9);
-  std::vector<BodyForces> results;
-  for (int threads : {1, 2}) {
-    omp_set_num_threads(threads);
+  const std::vector<BodyForces> results = testing_support::on_thread_counts({1, 2}, [&] {
     auto f = field(12);
-    results.push_back(evaluate(f, s));
-  }
-  omp_set_num_threads(1);
+    return evaluate(f, s);
+  });
   for (std::size_t i = 0; i < s.particles.size(); ++i) ASSERT_EQ(results[0].force[i], results[1].force[i]) << i;
   EXPECT_EQ(results[0].energy, results[1].energy);
   EXPECT_EQ(results[0].virial, results[1].virial);
@@ -176,9 +168,7 @@ TEST(DpdPairs, TheThreadCountDoesNotChangeABit) {
   std::vector<BodyForces> got;
   std::vector<DpdSums> sums;
   for (int threads : {1, 2, 3}) {
-#ifdef _OPENMP
-    omp_set_num_threads(threads);
-#endif
+    const testing_support::ScopedThreadCount count(threads);
     // A second evaluation with moved particles and the same list: nothing of the first may remain
     // (pairs across blocks that left the cut-off once left stale slots behind).
     auto f = field(5);
@@ -188,9 +178,6 @@ TEST(DpdPairs, TheThreadCountDoesNotChangeABit) {
     got.push_back(evaluate(f, moved));
     sums.push_back(f.last_sums());
   }
-#ifdef _OPENMP
-  omp_set_num_threads(omp_get_num_procs());
-#endif
   for (std::size_t t = 1; t < got.size(); ++t) {
     for (std::size_t i = 0; i < s.particles.size(); ++i)
       ASSERT_TRUE(got[t].force[i] == got[0].force[i]) << "particle " << i << ", " << t + 1 << " threads: " << got[t].force[i].transpose()
@@ -208,9 +195,10 @@ TEST(DpdPairs, PairsAcrossBlocksFollowListRebuildsAndThreadCounts) {
   State far = s;
   for (std::size_t i = 0; i < far.particles.size(); ++i) far.particles.x[i] += 0.4 * std::sin(static_cast<double>(i));
   auto fresh = [](const State& st) {
-    omp_set_num_threads(1);
-    auto f = field(5);
-    return evaluate(f, st);
+    return testing_support::with_threads(1, [&] {
+      auto f = field(5);
+      return evaluate(f, st);
+    });
   };
   const BodyForces want_s = fresh(s), want_far = fresh(far);
   auto f = field(5);
@@ -221,7 +209,7 @@ TEST(DpdPairs, PairsAcrossBlocksFollowListRebuildsAndThreadCounts) {
     const BodyForces* want;
   };
   for (const Case& c : {Case{2, &s, &want_s}, Case{2, &far, &want_far}, Case{3, &far, &want_far}, Case{2, &s, &want_s}, Case{1, &far, &want_far}}) {
-    omp_set_num_threads(c.threads);
+    const testing_support::ScopedThreadCount count(c.threads);
     const auto builds = builds_before();
     const BodyForces got = evaluate(f, *c.state);
     if (c.state == &far && c.threads == 2) {
@@ -231,7 +219,6 @@ TEST(DpdPairs, PairsAcrossBlocksFollowListRebuildsAndThreadCounts) {
       ASSERT_TRUE(got.force[i] == c.want->force[i]) << "particle " << i << ", " << c.threads << " threads";
     EXPECT_EQ(got.energy, c.want->energy);
   }
-  omp_set_num_threads(omp_get_num_procs());
 }
 
 TEST(DpdPairs, OnlyTheListedLiquidParticlesTakeDpdForces) {

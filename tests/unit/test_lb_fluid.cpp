@@ -9,13 +9,10 @@
 #include <cstdio>
 #include <vector>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include "anisodyn/core/error.hpp"
 #include "anisodyn/lb/fluid_checks.hpp"
 #include "anisodyn/lb/lb_fluid.hpp"
+#include "thread_count.hpp"
 
 using namespace anisodyn;
 using namespace anisodyn::lb;
@@ -127,19 +124,18 @@ TEST(LbFluid, BounceBackWallsConserveMass) {
 TEST(LbFluid, OneAndTwoThreadsGiveTheSameBits) {
 #ifdef _OPENMP
   auto run = [](int threads) {
-    omp_set_num_threads(threads);
-    LbFluid fluid = noisy_fluid(true, true);
-    for (int s = 0; s < 30; ++s) {
-      fluid.add_force(fluid.node(2, 3, 4), Vec3(1e-3, 2e-3, -1e-3));
-      fluid.step();
-    }
-    return fluid.populations();
+    return testing_support::with_threads(threads, [] {
+      LbFluid fluid = noisy_fluid(true, true);
+      for (int s = 0; s < 30; ++s) {
+        fluid.add_force(fluid.node(2, 3, 4), Vec3(1e-3, 2e-3, -1e-3));
+        fluid.step();
+      }
+      return fluid.populations();
+    });
   };
-  const int threads = omp_get_max_threads();
   const auto one = run(1);
   EXPECT_EQ(one, run(2));
   EXPECT_EQ(one, run(3));
-  omp_set_num_threads(threads);
 #else
   GTEST_SKIP() << "built without OpenMP";
 #endif

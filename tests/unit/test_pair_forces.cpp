@@ -5,10 +5,6 @@
 // rebuilds exactly when a particle has moved more than half the skin.
 #include <gtest/gtest.h>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include <cmath>
 #include <vector>
 
@@ -16,6 +12,7 @@
 #include "anisodyn/interactions/pair_force_field.hpp"
 #include "anisodyn/interactions/wca.hpp"
 #include "anisodyn/neighbors/verlet_list.hpp"
+#include "thread_count.hpp"
 
 using namespace anisodyn;
 
@@ -134,14 +131,11 @@ TEST(PairForces, NewtonsThirdLawAndThreadCountIndependence) {
   WcaSystem sys(7, 3, 1.0);
   const auto& [rng, box, p, wca, list] = sys;
   auto run = [&](int threads) {
-#ifdef _OPENMP
-    omp_set_num_threads(threads);
-#else
-    (void)threads;
-#endif
-    std::vector<Vec3> f;
-    const auto s = accumulate_pair_forces(box, p, list, wca, f);
-    return std::make_pair(f, s.energy);
+    return testing_support::with_threads(threads, [&] {
+      std::vector<Vec3> f;
+      const auto s = accumulate_pair_forces(box, p, list, wca, f);
+      return std::make_pair(f, s.energy);
+    });
   };
   const auto one = run(1), two = run(2);
   EXPECT_EQ(one.first, two.first);

@@ -14,10 +14,6 @@
 // - the same bits with 1 and 2 threads.
 #include <gtest/gtest.h>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -30,6 +26,7 @@
 #include "anisodyn/core/rng.hpp"
 #include "anisodyn/integrate/rigid_body_nve.hpp"
 #include "anisodyn/system/rigid_sites.hpp"
+#include "thread_count.hpp"
 
 using namespace anisodyn;
 
@@ -574,15 +571,13 @@ TEST(RigidBodyNve, ResultsDoNotDependOnTheThreadCount) {
       f.torque[i] = -(s.particles.orientation(i) * Vec3::UnitZ()).cross(Vec3::UnitX());
     }
   };
-  const int threads = omp_get_max_threads();
-  State one = start, two = start;
-  omp_set_num_threads(1);
-  RigidBodyNve serial(0.01, {{1.5, Vec3(1, 2, 3)}}, springs);
-  run(serial, one, 20);
-  omp_set_num_threads(2);
-  RigidBodyNve parallel(0.01, {{1.5, Vec3(1, 2, 3)}}, springs);
-  run(parallel, two, 20);
-  omp_set_num_threads(threads);
+  const auto advanced = [&] {
+    State s = start;
+    RigidBodyNve nve(0.01, {{1.5, Vec3(1, 2, 3)}}, springs);
+    run(nve, s, 20);
+    return s;
+  };
+  const State one = testing_support::with_threads(1, advanced), two = testing_support::with_threads(2, advanced);
   EXPECT_EQ(first_difference(one.particles, two.particles), "");
 #endif
 }

@@ -3,10 +3,6 @@
 // nothing; 1 and 2 threads give the same bits.
 #include <gtest/gtest.h>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include <cmath>
 #include <vector>
 
@@ -15,6 +11,7 @@
 #include "anisodyn/interactions/pair_force_field.hpp"
 #include "anisodyn/interactions/rod_overlap_pairs.hpp"
 #include "field_forces.hpp"
+#include "thread_count.hpp"
 
 using namespace anisodyn;
 
@@ -77,14 +74,9 @@ TEST(RodOverlapPairs, ForceFieldEqualsTheAllPairsSumOfTheKernel) {
 
 TEST(RodOverlapPairs, SameBitsWithOneAndTwoThreads) {
   const State s = rods_and_spheres();
-#ifdef _OPENMP
-  omp_set_num_threads(1);
-#endif
-  const BodyForces one = field_forces(s);
-#ifdef _OPENMP
-  omp_set_num_threads(2);
-#endif
-  const BodyForces two = field_forces(s);
+  const auto forces = [&] { return field_forces(s); };
+  const BodyForces one = testing_support::with_threads(1, forces);
+  const BodyForces two = testing_support::with_threads(2, forces);
   EXPECT_EQ(one.force, two.force);
   EXPECT_EQ(one.torque, two.torque);
   EXPECT_EQ(one.energy, two.energy);

@@ -8,12 +8,9 @@
 #include <cmath>
 #include <vector>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include "anisodyn/core/rng.hpp"
 #include "anisodyn/interactions/site_liquid.hpp"
+#include "thread_count.hpp"
 
 using namespace anisodyn;
 
@@ -205,9 +202,7 @@ TEST(SiteLiquid, TheThreadCountDoesNotChangeABit) {
   std::vector<std::vector<double>> f;
   std::vector<std::vector<Vec3>> fs;
   for (int threads : {1, 2, 3}) {
-#ifdef _OPENMP
-    omp_set_num_threads(threads);
-#endif
+    const testing_support::ScopedThreadCount count(threads);
     SiteLiquidForces forces(p, 0.005, 3);
     forces.set_noise_step(17);
     f.emplace_back(3 * liquid.x.size(), 0.0);
@@ -215,9 +210,6 @@ TEST(SiteLiquid, TheThreadCountDoesNotChangeABit) {
     std::vector<Vec3> ts(sites.size(), Vec3::Zero());
     forces.add(box, sites, liquid.view(), f.back().data(), fs.back(), ts);
   }
-#ifdef _OPENMP
-  omp_set_num_threads(omp_get_num_procs());
-#endif
   for (std::size_t t = 1; t < f.size(); ++t) {
     EXPECT_EQ(f[t], f[0]);
     for (std::size_t s = 0; s < sites.size(); ++s) EXPECT_TRUE(fs[t][s] == fs[0][s]);

@@ -14,10 +14,6 @@
 //   - lists of points hold exactly the pairs within cut-off + skin.
 #include <gtest/gtest.h>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -30,6 +26,7 @@
 #include "anisodyn/interactions/rod_overlap_pairs.hpp"
 #include "anisodyn/neighbors/verlet_list.hpp"
 #include "field_forces.hpp"
+#include "thread_count.hpp"
 
 using namespace anisodyn;
 
@@ -188,12 +185,7 @@ AllPairs all_pairs(const State& s) {
 }
 
 BodyForces evaluate(PairForceField<RodOverlapPairs>& field, const State& s, int threads) {
-#ifdef _OPENMP
-  omp_set_num_threads(threads);
-#else
-  (void)threads;
-#endif
-  return testing_support::forces_of(field, s);
+  return testing_support::with_threads(threads, [&] { return testing_support::forces_of(field, s); });
 }
 
 }  // namespace
