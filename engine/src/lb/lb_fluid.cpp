@@ -361,6 +361,8 @@ void LbFluid::collide_row(std::size_t row, double* out, double* noise, std::size
     if (lanes == kLanes) {
       // Nineteen read streams are more than the hardware prefetcher follows: fetch ahead by hand.
       for (int i = 0; i < kQ; ++i) __builtin_prefetch(f_.data() + static_cast<std::size_t>(i) * stride_ + node + kPrefetchAhead);
+      for (const double* force : {fx_.data(), fy_.data(), fz_.data()}) __builtin_prefetch(force + node + kPrefetchAhead);
+      __builtin_prefetch(solid_.data() + node + kPrefetchAhead);
       for (int i = 0; i < kQ; ++i) n[i] = load(f_.data() + static_cast<std::size_t>(i) * stride_ + node);
       f0 = load(fx_.data() + node), f1 = load(fy_.data() + node), f2 = load(fz_.data() + node);
       std::memcpy(&solid_bytes, solid_.data() + node, sizeof solid_bytes);
