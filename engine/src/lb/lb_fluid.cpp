@@ -462,6 +462,11 @@ void LbFluid::stream_row(std::size_t row, double* out, std::size_t stride) {
   }
 }
 
+void LbFluid::clear_row_forces(std::size_t row) {
+  const auto nx = static_cast<std::size_t>(dims_[0]);
+  for (std::vector<double>* component : {&fx_, &fy_, &fz_}) std::fill_n(component->begin() + static_cast<std::ptrdiff_t>(row * nx), nx, 0.0);
+}
+
 LbFluid::RowCollision LbFluid::row_collision() const {
   const bool thermal = params_.kT > 0.0, bulk = gamma_[kFirstStressMode] != 0.0, ghosts = gamma_[kFirstGhostMode] != 0.0;
   constexpr RowCollision kTable[2][2][2] = {
@@ -485,23 +490,21 @@ void LbFluid::step() {
     static thread_local std::vector<double> out, noise;
     out.resize(kQ * stride + 2 * kLanes);
     noise.resize(params_.kT > 0.0 ? kNoisyModes * stride : 0);
-#pragma omp for schedule(static)
+#pragma omp for schedule(static) nowait
     for (std::size_t row = 0; row < rows; ++row) {
       if (!streaming_stores_ && row + 1 < rows) prefetch_destinations(row + 1);
       (this->*collide)(row, out.data() + kLanes, noise.data(), stride);
       stream_row(row, out.data() + kLanes, stride);
+      if (forces_pending_) clear_row_forces(row);  // while its lines are still in the cache
     }
+    if (streaming_stores_) fence_streaming_stores();  // the rows visible before another thread reads them
+#pragma omp barrier
     // Halfway bounce-back: what a fluid node sent into a solid one comes back reversed.
 #pragma omp for schedule(static)
     for (std::size_t l = 0; l < links_.size(); ++l) {
       const BoundaryLink& link = links_[l];
       const int back = opposite(link.i);
       next_[static_cast<std::size_t>(back) * stride_ + link.fluid] = next_[static_cast<std::size_t>(link.i) * stride_ + link.solid] - link.wall_term;
-    }
-    if (streaming_stores_) fence_streaming_stores();  // before another thread reads the rows
-    if (forces_pending_) {
-#pragma omp for schedule(static)
-      for (std::size_t n = 0; n < nodes_; ++n) fx_[n] = fy_[n] = fz_[n] = 0.0;
     }
   }
   forces_pending_ = false;

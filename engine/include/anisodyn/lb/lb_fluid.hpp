@@ -137,6 +137,8 @@ class LbFluid {
   /// The collision compiled for this fluid's noise and relaxations.
   RowCollision row_collision() const;
   void stream_row(std::size_t row, double* out, std::size_t stride);
+  /// The force densities of a row's nodes, used by its collision, back to zero.
+  void clear_row_forces(std::size_t row);
   /// Where population i of a row's nodes goes (their x shifted by c_ix), and fetching those lines
   /// for writing while the row before is collided.
   double* destination(int i, std::size_t row);
