@@ -5,7 +5,7 @@
 // STREAM counts it), with ordinary and with streaming stores. A step reads and writes 19 populations per node and reads the three force
 // components and the solid flag: 2 × 152 + 24 + 1 = 329 bytes per node update, so the bandwidth
 // limit is copy bandwidth / 329 B (docs/performance.md). Arguments: edge, threads, thermal, streaming
-// stores (1: the default where n_x is a multiple of 8; 0: ordinary stores). And
+// stores (1; the default above 32 MB) or ordinary ones (0). And
 // the cost of coupling 1000 beads for one LB step (two MD steps).
 #include <benchmark/benchmark.h>
 
@@ -41,7 +41,7 @@ void BM_LbStep(benchmark::State& bs) {
   set_threads(bs, static_cast<int>(bs.range(1)));
   const bool thermal = bs.range(2) != 0;
   lb::LbFluid fluid({edge, edge, edge}, lb::LbParameters{6.004, 0.016, 0.0, 0.0, thermal ? 4e-4 : 0.0, 1});
-  if (bs.range(3) == 0) fluid.use_streaming_stores(false);
+  fluid.use_streaming_stores(bs.range(3) != 0);
   for (int s = 0; s < 3; ++s) fluid.step();
   for (auto _ : bs) fluid.step();
   bs.counters["MLUPS"] = benchmark::Counter(static_cast<double>(fluid.nodes()) * static_cast<double>(bs.iterations()) / 1e6, benchmark::Counter::kIsRate);

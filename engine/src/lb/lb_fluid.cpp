@@ -123,6 +123,9 @@ template <ModeSet Live, class T, int... P>
 /// vectorised whatever the compiler makes of a loop.
 using Lanes = double __attribute__((vector_size(64)));
 constexpr int kLanes = 8;
+/// Two lattice copies up to this size are left to the caches (the last-level cache of the
+/// machines measured; the step's own row buffers are small beside it).
+constexpr std::size_t kCachedLatticeBytes = std::size_t{32} << 20;
 /// How far ahead the read streams are fetched, in nodes (32 to 256 measured alike on 64³).
 constexpr std::size_t kPrefetchAhead = 64;
 
@@ -181,9 +184,10 @@ LbFluid::LbFluid(const std::array<int, 3>& dims, const LbParameters& params)
   // power-of-two stride (64³ nodes: 2 MB) the nineteen streams of a row map to the same cache sets
   // (measured: 18.4 against 23.6 MLUPS on 64³, docs/performance.md).
   stride_ = (nodes_ + kLanes - 1) / kLanes * kLanes + 3 * kLanes;
-  // Measured faster on every lattice tried, 24³ to 96³ (docs/performance.md); rows start on a
-  // cache line only when n_x is a whole number of vectors.
-  streaming_stores_ = dims[0] % kLanes == 0;
+  // Past the caches only when the two copies of the lattice do not fit in them anyway: measured
+  // 1.9× faster at 48³ and 64³ (34 and 80 MB), 10% slower at 24³ and 32³ (docs/performance.md).
+  // Rows start on a cache line only when n_x is a whole number of vectors.
+  streaming_stores_ = dims[0] % kLanes == 0 && 2 * kQ * sizeof(double) * nodes_ > kCachedLatticeBytes;
   f_.assign(kQ * stride_, 0.0);
   next_.assign(kQ * stride_, 0.0);
   fx_.assign(nodes_, 0.0);

@@ -110,8 +110,8 @@ class LbFluid {
   /// [i · nodes + n]), and the step (the noise's counter).
   std::vector<double> populations() const;
   void restore(const std::vector<double>& populations, std::uint64_t steps);
-  /// Whether rows are written past the caches (on by default where n_x is a multiple of 8). The
-  /// bits are the same either way; tests compare the two.
+  /// Whether rows are written past the caches (by default where n_x is a multiple of 8 and the
+  /// lattice's two copies exceed 32 MB). The bits are the same either way; tests compare the two.
   void use_streaming_stores(bool on);
   bool streaming_stores() const { return streaming_stores_; }
 
