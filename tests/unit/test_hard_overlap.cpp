@@ -1,5 +1,6 @@
-// HardOverlap (cell list + kernels) against an O(N²) brute-force overlap search with the generic
-// dispatcher, for trial moves in dense mixtures, and after NPT volume moves.
+// HardOverlap (cell grids or AABB trees + kernels) against an O(N²) brute-force overlap search
+// with the generic dispatcher, for trial moves in dense mixtures, after NPT volume moves, and
+// after many accepted moves in a box only a few rod lengths wide (the trees' case).
 #include <gtest/gtest.h>
 
 #include "anisodyn/config/builder.hpp"
@@ -59,6 +60,41 @@ TEST(HardOverlap, MatchesBruteForceForBoardsAndSpheres) {
   Rng rng(5, 0);
   insert_randomly(s, req, rng);
   HardOverlap ho(s);
+  // The box is two or three board cut-offs wide: the board grid would scan every cell.
+  EXPECT_TRUE(ho.uses_tree(0, 0));
+  EXPECT_TRUE(ho.uses_tree(1, 0));
   EXPECT_FALSE(ho.first_overlap().has_value());
   compare_trials(s, ho, rng, 3000, 1.0);
+}
+
+TEST(HardOverlap, TreesMatchBruteForceAfterManyAcceptedMoves) {
+  // Rods 12×1×1 at η = 0.2 in a box about three rod lengths wide, compressed under pressure:
+  // the engine's trees are refitted on every accepted move and rebuilt once per sweep and after
+  // every volume move; its decisions must still be the brute force's.
+  State s;
+  s.species.push_back(Species{"rod", Shape::cuboid(1.0, 1.0, 12.0), 1.0, {}, {}});
+  s.box = Box(box_edges_for_packing_fraction(s.species, {400}, 0.2, Vec3::Ones()));
+  PlacementRequest req{{400}, {OrientationRule{}}, 10000};
+  Rng rng(23, 0);
+  place_on_lattice(s, req, rng);
+  McEngine mc(s, RngState{9, 0, 0, 4});
+  ASSERT_TRUE(mc.overlap().uses_tree(0, 0));
+  mc.set_pressure(1.0);
+  for (int c = 0; c < 60; ++c) mc.cycle();
+  ASSERT_GT(mc.counters().translate_accepted[0], 400);
+  ASSERT_GT(mc.counters().volume_accepted, 0);
+  EXPECT_FALSE(mc.overlap().first_overlap().has_value());
+  compare_trials(s, mc.overlap(), rng, 4000, 0.5);
+  HardOverlap fresh(s);
+  compare_trials(s, fresh, rng, 2000, 0.5);
+}
+
+TEST(HardOverlap, SpheresInALargeBoxKeepTheGrid) {
+  State s;
+  s.species.push_back(Species{"hs", Shape::sphere(1.0), 1.0, {}, {}});
+  s.box = Box(box_edges_for_packing_fraction(s.species, {500}, 0.3, Vec3::Ones()));
+  PlacementRequest req{{500}, {OrientationRule{}}, 10000};
+  Rng rng(3, 0);
+  place_on_lattice(s, req, rng);
+  EXPECT_FALSE(HardOverlap(s).uses_tree(0, 0));
 }

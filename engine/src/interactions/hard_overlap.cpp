@@ -50,7 +50,48 @@ void HardOverlap::rebuild(const State& state) {
   std::vector<double> self(static_cast<std::size_t>(nspecies_));
   for (int s = 0; s < nspecies_; ++s) self[static_cast<std::size_t>(s)] = cutoff(s, s);
   cells_.build(state.box, p.x, p.y, p.z, p.species, self, expected_counts_);
+  choose_searches();
   if (skin_.any()) rebuild_skin_lists();
+}
+
+void HardOverlap::choose_searches() {
+  const auto ns = static_cast<std::size_t>(nspecies_);
+  tree_pair_.assign(ns * ns, 0);
+  for (int a = 0; a < nspecies_; ++a)
+    for (int b = 0; b < nspecies_; ++b)
+      tree_pair_[static_cast<std::size_t>(a * nspecies_ + b)] = cells_.grid(b).scans_all_cells(cutoff(a, b));
+  build_trees();
+}
+
+Vec3 HardOverlap::bounding_half_extents(int a, const Mat3& rot) const {
+  const Vec3 h = state_->species[static_cast<std::size_t>(a)].shape.lab_half_extents(rot);
+  return h * (1.0 + 1e-9) + Vec3::Constant(1e-12);
+}
+
+void HardOverlap::build_trees() {
+  const auto ns = static_cast<std::size_t>(nspecies_);
+  trees_.assign(ns, AabbTree());
+  moves_since_build_.assign(ns, 0);
+  tree_needed_.assign(ns, 0);
+  for (int a = 0; a < nspecies_; ++a)
+    for (int b = 0; b < nspecies_; ++b)
+      if (uses_tree(a, b)) tree_needed_[static_cast<std::size_t>(b)] = 1;
+  for (int b = 0; b < nspecies_; ++b)
+    if (tree_needed(b)) rebuild_tree(b);
+}
+
+void HardOverlap::rebuild_tree(int b) {
+  const Particles& p = state_->particles;
+  std::vector<std::int32_t> members;
+  std::vector<Vec3> centres(p.size()), half(p.size());
+  for (std::size_t ui = 0; ui < p.size(); ++ui) {
+    if (p.species[ui] != b) continue;
+    members.push_back(static_cast<std::int32_t>(ui));
+    centres[ui] = p.position(ui);
+    half[ui] = bounding_half_extents(b, rot_[ui]);
+  }
+  trees_[static_cast<std::size_t>(b)].build(state_->box, members, centres, half);
+  moves_since_build_[static_cast<std::size_t>(b)] = 0;
 }
 
 void HardOverlap::inserted(std::int32_t i) {
@@ -59,6 +100,7 @@ void HardOverlap::inserted(std::int32_t i) {
   rot_.resize(p.size());
   rot_[ui] = p.orientation(ui).toRotationMatrix();
   cells_.insert(i, p.species[ui], p.position(ui));
+  if (tree_needed(p.species[ui])) trees_[static_cast<std::size_t>(p.species[ui])].insert(i, p.position(ui), bounding_half_extents(p.species[ui], rot_[ui]));
   if (skin_.lists(p.species[ui])) rereference(i);
 }
 
@@ -114,6 +156,7 @@ bool HardOverlap::for_each_overlap(std::int32_t i, const Vec3& r, const Mat3& ro
         return j != i && j >= first_j && kernel(j, d, r2) && on_overlap(j);
       };
       if (use_list && skin_.pair_listed(a, b)) return visit_listed(i, b, r, rc, candidate);
+      if (uses_tree(a, b)) return trees_[static_cast<std::size_t>(b)].visit(state_->box, r, bounding_half_extents(a, rot), rc, candidate);
       return cells_.visit(b, r, rc, candidate);
     };
     if (with_pair_kernel(sa, rot, sb, rot_, test)) return true;
@@ -224,6 +267,12 @@ void HardOverlap::moved(std::int32_t i, const Vec3& r, const Mat3& rot) {
   rot_[static_cast<std::size_t>(i)] = rot;
   cells_.move(i, r);
   const int a = state_->particles.species[static_cast<std::size_t>(i)];
+  if (tree_needed(a)) {
+    AabbTree& tree = trees_[static_cast<std::size_t>(a)];
+    tree.move(i, r, bounding_half_extents(a, rot));
+    // Refits only grow the boxes' overlap as bodies wander: rebuild once per sweep of the species.
+    if (++moves_since_build_[static_cast<std::size_t>(a)] >= tree.size()) rebuild_tree(a);
+  }
   if (skin_.lists(a) && !skin_.within_skin(i, state_->species[static_cast<std::size_t>(a)].shape, a, state_->box, r, rot))
     rereference(i);
 }

@@ -2,6 +2,12 @@
 // Hard-core exclusion for a whole configuration: the cell list, cached rotation matrices, the
 // per-species-pair cut-offs (sum of circumradii) and, for engines with small moves, skin lists
 // (neighbors/skin_list.hpp). Contact counts as overlap (spec 10 §1.4).
+//
+// Candidates of species b come from b's cell grid unless a query of some species a would make
+// that grid visit every cell (long particles in a box a few cut-offs wide); then from an AABB
+// tree over b's lab boxes (neighbors/aabb_tree.hpp), chosen per pair (a, b) and rebuilt after as
+// many accepted moves as b has particles. Both hand the overlap kernels the separations the
+// grid's all-cells scan formed, so the outcomes are the same bits either way.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -9,6 +15,7 @@
 #include <vector>
 
 #include "anisodyn/core/types.hpp"
+#include "anisodyn/neighbors/aabb_tree.hpp"
 #include "anisodyn/neighbors/cell_list.hpp"
 #include "anisodyn/neighbors/skin_list.hpp"
 #include "anisodyn/system/state.hpp"
@@ -52,6 +59,8 @@ class HardOverlap {
   double cutoff(int a, int b) const { return cutoff_[static_cast<std::size_t>(a * nspecies_ + b)]; }
   /// Largest pair cut-off: minimum image needs every box edge ≥ twice this.
   double max_cutoff() const { return largest_cutoff_; }
+  /// Whether queries of species a search species b through its AABB tree (else its cell grid).
+  bool uses_tree(int a, int b) const { return tree_pair_[static_cast<std::size_t>(a * nspecies_ + b)] != 0; }
 
  private:
   /// Calls on_overlap(j) for each particle j ≠ i, j ≥ first_j, that particle i placed at (r, rot)
@@ -69,6 +78,14 @@ class HardOverlap {
   /// Links i (whose reference is set) with every referenced j ≥ first_j whose grown reference
   /// body overlaps i's.
   void link_partners(std::int32_t i, std::int32_t first_j);
+  /// Chooses grid or tree per species pair and builds the trees needed.
+  void choose_searches();
+  void build_trees();
+  void rebuild_tree(int b);
+  bool tree_needed(int b) const { return tree_needed_[static_cast<std::size_t>(b)] != 0; }
+  /// Lab box half-widths of a body of species a with rotation rot, padded so that round-off can
+  /// only add candidates.
+  Vec3 bounding_half_extents(int a, const Mat3& rot) const;
 
   const State* state_;
   double largest_cutoff_ = 0.0;
@@ -78,6 +95,10 @@ class HardOverlap {
   std::vector<std::size_t> expected_counts_;
   CellList cells_;
   SkinList skin_;
+  std::vector<char> tree_pair_;              // per (a, b): a's queries search b's tree
+  std::vector<char> tree_needed_;            // per species: some pair searches its tree
+  std::vector<AabbTree> trees_;              // per species (empty unless needed)
+  std::vector<std::size_t> moves_since_build_;  // per species with a tree
 };
 
 }  // namespace anisodyn

@@ -44,8 +44,18 @@ class SpeciesGrid {
   bool visit(const Box& box, const Vec3& r, double rc, F&& f) const;
 
   const Int3& cells_per_axis() const { return n_; }
+  /// Whether a query with cut-off rc visits every cell (its reach wraps an axis whole): the grid
+  /// then scans every particle, and a search that does not (neighbors/aabb_tree.hpp) is better.
+  bool scans_all_cells(double rc) const {
+    for (int k = 0; k < 3; ++k)
+      if (span(rc, k) >= n_[k] || span(rc, k) > kMaxSpan) return true;
+    return false;
+  }
 
  private:
+  static constexpr int kMaxSpan = 16;
+  /// Cells along axis k within reach of a query with cut-off rc, its own included.
+  int span(double rc, int k) const { return 2 * static_cast<int>(std::ceil(rc * inv_h_[k])) + 1; }
   /// Fallback of visit() when the reach wraps a whole axis (small boxes): every cell, minimum image.
   template <class F>
   bool visit_all_cells(const Box& box, const Vec3& r, double rc, F&& f) const;
@@ -104,21 +114,20 @@ bool SpeciesGrid::visit(const Box& box, const Vec3& r, double rc, F&& f) const {
   // Per axis, the cells within reach. When no axis is wrapped whole (the usual case) each visited
   // cell has one periodic image next to r, so the separation is p + shift − r with no rounding;
   // otherwise every cell is visited once and the minimum image is taken per candidate.
-  constexpr int kMaxSpan = 16;
   int cells[3][kMaxSpan];
   double shift[3][kMaxSpan];
-  int span[3];
+  int spans[3];
   bool wraps = false;
   const Vec3& L = box.edges();
   for (int k = 0; k < 3; ++k) {
     const int reach = static_cast<int>(std::ceil(rc * inv_h_[k]));
     const int c = std::min(static_cast<int>(r[k] * inv_h_[k]), n_[k] - 1);
-    span[k] = 2 * reach + 1;
-    if (span[k] >= n_[k] || span[k] > kMaxSpan) {
+    spans[k] = span(rc, k);
+    if (spans[k] >= n_[k] || spans[k] > kMaxSpan) {
       wraps = true;
       break;
     }
-    for (int a = 0; a < span[k]; ++a) {
+    for (int a = 0; a < spans[k]; ++a) {
       const int cc = c - reach + a;
       cells[k][a] = cc < 0 ? cc + n_[k] : (cc >= n_[k] ? cc - n_[k] : cc);
       shift[k][a] = cc < 0 ? -L[k] : (cc >= n_[k] ? L[k] : 0.0);
@@ -127,7 +136,7 @@ bool SpeciesGrid::visit(const Box& box, const Vec3& r, double rc, F&& f) const {
   if (wraps) return visit_all_cells(box, r, rc, std::forward<F>(f));
   // Nearest cells first: most trial moves are rejected, and a rejection ends at the first overlap,
   // which is usually in the query's own cell or a face neighbour.
-  for (const auto& [a, b, c] : stencil_order(span[0], span[1], span[2])) {
+  for (const auto& [a, b, c] : stencil_order(spans[0], spans[1], spans[2])) {
     const int cell = (cells[0][a] * n_[1] + cells[1][b]) * n_[2] + cells[2][c];
     const Vec3 q(r.x() - shift[0][a], r.y() - shift[1][b], r.z() - shift[2][c]);
     if (scan_cell(cell, q, rc * rc, nullptr, f)) return true;
