@@ -1,11 +1,15 @@
-// Whole-run MC throughput: single-thread trial moves per second on the two reference systems of
-// issue 2, with move sizes tuned to 35% acceptance (tuning is then frozen while timing):
+// Whole-run MC throughput: single-thread trial moves per second, with move sizes tuned to 35%
+// acceptance (tuning is then frozen while timing), on the reference systems of issue 2 and the
+// dense elongated ones of issue 18:
 //   cuboids — N = 2000 boards 12×3.46×1 at η = 0.20 (isotropic);
-//   spheres — N = 4000 hard spheres at η = 0.40.
+//   spheres — N = 4000 hard spheres at η = 0.40;
+//   rods nematic — N = 2000 boards 12×1×1 at η = 0.34 (from an aligned lattice: nematic);
+//   wide boards nematic — N = 2000 boards 12×8×1 at η = 0.34.
 // The states (lattice at the target density melted by NVT) are prepared once and cached in $ANISODYN_BENCH_CACHE
 // (default: ./bench-cache) so repeated runs time only the production loop.
 #include <benchmark/benchmark.h>
 
+#include "anisodyn/system/order.hpp"
 #include "support/prepared_state.hpp"
 
 using namespace anisodyn;
@@ -58,8 +62,21 @@ void BM_McSpheres4000(benchmark::State& bs) {
   run_cycles(bs, p);
 }
 
+void BM_McRods2000Nematic(benchmark::State& bs) {
+  static const Prepared p = prepare("cuboids_12x1x1_N2000_eta0.34", Species{"board", Shape::cuboid(1.0, 1.0, 12.0), 1.0, {}, {}}, 2000, 0.34, 5000);
+  run_cycles(bs, p);
+  bs.counters["U_L"] = body_axis_order(p.state, 0)[2].order;
+}
+void BM_McWideBoards2000Nematic(benchmark::State& bs) {
+  static const Prepared p = prepare("cuboids_12x8x1_N2000_eta0.34", Species{"board", Shape::cuboid(1.0, 8.0, 12.0), 1.0, {}, {}}, 2000, 0.34, 5000);
+  run_cycles(bs, p);
+  bs.counters["U_L"] = body_axis_order(p.state, 0)[2].order;
+}
+
 }  // namespace
 
+BENCHMARK(BM_McRods2000Nematic)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_McWideBoards2000Nematic)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_McCuboids2000)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_McSpheres4000)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK_MAIN();

@@ -212,7 +212,9 @@ TEST(SkinList, HardOverlapWithListsDecidesAsWithoutAndAsBruteForce) {
     const bool expected = brute_force_overlaps(s, i, r, rot);
     ASSERT_EQ(plain.overlaps(ii, r, rot), expected) << "trial " << t;
     ASSERT_EQ(listed.overlaps(ii, r, rot), expected) << "trial " << t;
-    if (t % 50 == 0) ASSERT_EQ(listed.count_overlaps(ii, r, rot), plain.count_overlaps(ii, r, rot)) << "trial " << t;
+    if (t % 50 == 0) {
+      ASSERT_EQ(listed.count_overlaps(ii, r, rot), plain.count_overlaps(ii, r, rot)) << "trial " << t;
+    }
     if (expected) { ++overlapping; continue; }
     const int species = s.particles.species[i];
     outside_skin += !listed.skin_lists().within_skin(ii, s.species[static_cast<std::size_t>(species)].shape, species, s.box, r, rot);

@@ -156,12 +156,19 @@ bool HardOverlap::for_each_overlap(std::int32_t i, const Vec3& r, const Mat3& ro
         return j != i && j >= first_j && kernel(j, d, r2) && on_overlap(j);
       };
       if (use_list && skin_.pair_listed(a, b)) return visit_listed(i, b, r, rc, candidate);
-      if (uses_tree(a, b)) return trees_[static_cast<std::size_t>(b)].visit(state_->box, r, bounding_half_extents(a, rot), rc, candidate);
+      if (uses_tree(a, b)) return visit_tree(a, b, r, rot, rc, candidate);
       return cells_.visit(b, r, rc, candidate);
     };
     if (with_pair_kernel(sa, rot, sb, rot_, test)) return true;
   }
   return false;
+}
+
+// Out of line, so that the grid's candidate loop, the common case, stays inlined as before
+// (measured: 5% fewer hard-sphere trials per second with the tree's loop inlined beside it).
+template <class F>
+[[gnu::noinline]] bool HardOverlap::visit_tree(int a, int b, const Vec3& r, const Mat3& rot, double rc, F&& f) const {
+  return trees_[static_cast<std::size_t>(b)].visit(state_->box, r, bounding_half_extents(a, rot), rc, std::forward<F>(f));
 }
 
 template <class F>

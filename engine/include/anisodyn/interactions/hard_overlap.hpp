@@ -70,6 +70,10 @@ class HardOverlap {
 
   /// Calls f(j, d, r2) for the partners of species b on i's skin list with r2 ≤ rc², d formed as
   /// the cell list forms it; stops when f returns true.
+  /// Calls f(j, d, r2) for the particles of species b whose lab boxes meet that of a body of
+  /// species a at (r, rot) and whose centres lie within rc, from b's AABB tree.
+  template <class F>
+  bool visit_tree(int a, int b, const Vec3& r, const Mat3& rot, double rc, F&& f) const;
   template <class F>
   bool visit_listed(std::int32_t i, int b, const Vec3& r, double rc, F&& f) const;
   void rebuild_skin_lists();

@@ -122,7 +122,7 @@ bool SpeciesGrid::visit(const Box& box, const Vec3& r, double rc, F&& f) const {
   for (int k = 0; k < 3; ++k) {
     const int reach = static_cast<int>(std::ceil(rc * inv_h_[k]));
     const int c = std::min(static_cast<int>(r[k] * inv_h_[k]), n_[k] - 1);
-    spans[k] = span(rc, k);
+    spans[k] = 2 * reach + 1;
     if (spans[k] >= n_[k] || spans[k] > kMaxSpan) {
       wraps = true;
       break;
