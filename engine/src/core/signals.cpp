@@ -14,4 +14,5 @@ void install_interrupt_handlers() {
 }
 
 bool interrupt_requested() { return g_interrupted != 0; }
+void clear_interrupt_request() { g_interrupted = 0; }
 }  // namespace anisodyn

@@ -100,7 +100,6 @@ double McRunner::advance() {
 
 void McRunner::one_cycle(io::H5mdWriter& out) {
   loop_.step(out);
-  if (overlaps_present_) return;  // a checkpoint must hold a valid configuration: wait for it
   checkpoints_->tick(loop_.step(), "cycle " + std::to_string(loop_.step()));
 }
 
@@ -124,30 +123,51 @@ void McRunner::run_quick_compress(io::H5mdWriter& out, const McPhase& phase) {
   engine_.set_pressure(std::nullopt);
   if (cursor_.quick_step <= 0.0) cursor_.quick_step = phase.quick_step;
   Progress progress("mc quick compress to eta=" + std::to_string(phase.target_packing_fraction), phase.max_cycles, quiet_);
+  // Checkpoints and interrupts only here, between a squeeze and the next shrink, where the
+  // configuration has no overlaps and the cursor says exactly where the loop stands; a resumed run
+  // then shrinks, removes and squeezes as the uninterrupted one. An interrupt during the removal or
+  // the squeeze goes back here.
+  std::int64_t last_checkpoint = loop_.step();
   while (state_.box.volume() > target_volume * (1.0 + 1e-12)) {
+    const std::int64_t every = checkpoints_->every();
+    if (interrupt_requested() || (every > 0 && loop_.step() - last_checkpoint >= every)) {
+      checkpoints_->tick(every > 0 ? every : 1, "cycle " + std::to_string(loop_.step()));
+      last_checkpoint = loop_.step();
+    }
+    const ValidPoint before_shrink = valid_point();
     engine_.rescale_allowing_overlaps(std::max(target_volume, state_.box.volume() * (1.0 - cursor_.quick_step)));
     engine_.set_overlap_removal(true);
-    overlaps_present_ = true;
     std::int64_t sweeps = 0;
     while (engine_.overlap().first_overlap()) {
-      one_cycle(out);
+      loop_.step(out);
       ++sweeps;
+      if (interrupt_requested()) interrupt_at(before_shrink);
       if (cursor_.cycle_in_phase >= phase.max_cycles)
         throw RuntimeFailure("quick compression did not reach packing fraction " + std::to_string(phase.target_packing_fraction) +
                              " within " + std::to_string(phase.max_cycles) + " cycles (reached " + std::to_string(state_.packing_fraction()) + ")");
     }
-    overlaps_present_ = false;
     engine_.set_overlap_removal(false);
     // Removal leaves particles just touching; ordinary sweeps reopen the gaps before the next
-    // shrink (without them each shrink creates more overlaps and the compression stalls). The
-    // configuration is valid again, so these cycles also honour interrupts and checkpoints.
-    for (std::int64_t k = 0; k < phase.squeeze_sweeps; ++k) one_cycle(out);
+    // shrink (without them each shrink creates more overlaps and the compression stalls).
+    for (std::int64_t k = 0; k < phase.squeeze_sweeps; ++k) {
+      loop_.step(out);
+      if (interrupt_requested()) interrupt_at(before_shrink);
+    }
     // Adapt the step: a few sweeps per shrink keeps the particles close to a relaxed packing.
     if (sweeps <= 3) cursor_.quick_step = std::min(0.05, 1.5 * cursor_.quick_step);
     else if (sweeps > 20) cursor_.quick_step = std::max(1e-4, 0.7 * cursor_.quick_step);
     progress.update(cursor_.cycle_in_phase, phase_detail(state_, engine_) + " step=" + std::to_string(cursor_.quick_step));
   }
   progress.finish(phase_detail(state_, engine_));
+}
+
+void McRunner::interrupt_at(const ValidPoint& p) {
+  // The engine's own structures are not brought back: the run stops here.
+  state_.particles = p.particles;
+  state_.box = p.box;
+  restore(p.runner);
+  checkpoints_->tick(loop_.step(), "cycle " + std::to_string(loop_.step()) + " (before the quick-compression step under way)");
+  throw Interrupted("interrupted during quick compression");  // tick() has thrown already
 }
 
 void McRunner::run_compress_phase(io::H5mdWriter& out, const McPhase& phase) {

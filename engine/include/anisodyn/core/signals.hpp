@@ -4,4 +4,7 @@
 namespace anisodyn {
 void install_interrupt_handlers();
 bool interrupt_requested();
+/// Forgets a request once it has been handled without leaving the process (tests that interrupt
+/// a run and resume it in the same process).
+void clear_interrupt_request();
 }  // namespace anisodyn

@@ -87,7 +87,8 @@ class McRunner : public run::StepClient {
 
   /// Runs from the cursor to the end, writing observables and frames to `out`. `checkpoint` is
   /// called every `checkpoint_every` cycles (0 = never) and when an interrupt was requested (then
-  /// Interrupted is thrown after it returns), only at cycles without overlaps.
+  /// Interrupted is thrown after it returns), only at cycles without overlaps: an interrupt during
+  /// quick compression's overlap removal goes back to the configuration before that shrink.
   void run(io::H5mdWriter& out, std::int64_t checkpoint_every, const std::function<void()>& checkpoint);
 
   /// The cycle of the last completed output row: rows after it are dropped when resuming.
@@ -110,6 +111,17 @@ class McRunner : public run::StepClient {
   void run_compress_phase(io::H5mdWriter& out, const McPhase& phase);
   void run_quick_compress(io::H5mdWriter& out, const McPhase& phase);
   void one_cycle(io::H5mdWriter& out);
+  /// Quick compression's last configuration without overlaps (before the shrink whose overlaps
+  /// are being removed) and the runner's state then: where an interrupt goes back to.
+  struct ValidPoint {
+    Particles particles;
+    Box box;
+    nlohmann::json runner;
+  };
+  ValidPoint valid_point() const { return {state_.particles, state_.box, checkpoint_state()}; }
+  /// Goes back to `p`, writes the checkpoint and throws Interrupted: an interrupt during overlap
+  /// removal is honoured within a cycle, and the resumed run repeats that shrink the same way.
+  [[noreturn]] void interrupt_at(const ValidPoint& p);
   void summarise_phase(const McPhase& phase, std::int64_t first_step);
   void record(io::H5mdWriter& out, const std::string& name, const std::vector<double>& values, const std::string& definition);
 
@@ -120,7 +132,6 @@ class McRunner : public run::StepClient {
   bool quiet_;
   McCursor cursor_;
   run::StepLoop loop_;
-  bool overlaps_present_ = false;  // quick compression: checkpoints wait until the overlaps are gone
   run::CheckpointClock* checkpoints_ = nullptr;  // during run()
   MoveCounters tune_mark_, sample_mark_;
   std::map<std::string, PhaseSeries> phase_samples_;

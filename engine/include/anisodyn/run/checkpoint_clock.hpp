@@ -15,6 +15,7 @@ class CheckpointClock {
   /// says where the run stands, for the message of an interrupt ("production cycle 1200").
   void tick(std::int64_t done, const std::string& where);
   void write() const { if (write_) write_(); }
+  std::int64_t every() const { return every_; }
 
  private:
   std::int64_t every_;
