@@ -33,15 +33,20 @@ void compare_trials(const State& s, const HardOverlap& ho, Rng& rng, int trials,
   EXPECT_LT(hits, trials - trials / 20);
 }
 
+/// n particles of one species on a lattice at packing fraction eta, aligned.
+State lattice_of(const Species& species, std::size_t n, double eta, Rng& rng) {
+  State s;
+  s.species.push_back(species);
+  s.box = Box(box_edges_for_packing_fraction(s.species, {n}, eta, Vec3::Ones()));
+  place_on_lattice(s, PlacementRequest{{n}, {OrientationRule{}}, 10000}, rng);
+  return s;
+}
+
 }  // namespace
 
 TEST(HardOverlap, MatchesBruteForceForHardSpheresAfterVolumeMoves) {
-  State s;
-  s.species.push_back(Species{"hs", Shape::sphere(1.0), 1.0, {}, {}});
-  s.box = Box(box_edges_for_packing_fraction(s.species, {500}, 0.3, Vec3::Ones()));
-  PlacementRequest req{{500}, {OrientationRule{}}, 10000};
   Rng rng(17, 0);
-  place_on_lattice(s, req, rng);
+  State s = lattice_of(Species{"hs", Shape::sphere(1.0), 1.0, {}, {}}, 500, 0.3, rng);
   McEngine mc(s, RngState{3, 0, 0, 4});
   mc.set_pressure(8.0);
   for (int c = 0; c < 200; ++c) mc.cycle();
@@ -71,12 +76,8 @@ TEST(HardOverlap, TreesMatchBruteForceAfterManyAcceptedMoves) {
   // Rods 12×1×1 at η = 0.2 in a box about three rod lengths wide, compressed under pressure:
   // the engine's trees are refitted on every accepted move and rebuilt once per sweep and after
   // every volume move; its decisions must still be the brute force's.
-  State s;
-  s.species.push_back(Species{"rod", Shape::cuboid(1.0, 1.0, 12.0), 1.0, {}, {}});
-  s.box = Box(box_edges_for_packing_fraction(s.species, {400}, 0.2, Vec3::Ones()));
-  PlacementRequest req{{400}, {OrientationRule{}}, 10000};
   Rng rng(23, 0);
-  place_on_lattice(s, req, rng);
+  State s = lattice_of(Species{"rod", Shape::cuboid(1.0, 1.0, 12.0), 1.0, {}, {}}, 400, 0.2, rng);
   McEngine mc(s, RngState{9, 0, 0, 4});
   ASSERT_TRUE(mc.overlap().uses_tree(0, 0));
   mc.set_pressure(1.0);
@@ -90,11 +91,7 @@ TEST(HardOverlap, TreesMatchBruteForceAfterManyAcceptedMoves) {
 }
 
 TEST(HardOverlap, SpheresInALargeBoxKeepTheGrid) {
-  State s;
-  s.species.push_back(Species{"hs", Shape::sphere(1.0), 1.0, {}, {}});
-  s.box = Box(box_edges_for_packing_fraction(s.species, {500}, 0.3, Vec3::Ones()));
-  PlacementRequest req{{500}, {OrientationRule{}}, 10000};
   Rng rng(3, 0);
-  place_on_lattice(s, req, rng);
+  const State s = lattice_of(Species{"hs", Shape::sphere(1.0), 1.0, {}, {}}, 500, 0.3, rng);
   EXPECT_FALSE(HardOverlap(s).uses_tree(0, 0));
 }

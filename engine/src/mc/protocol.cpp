@@ -130,10 +130,9 @@ void McRunner::run_quick_compress(io::H5mdWriter& out, const McPhase& phase) {
   std::int64_t last_checkpoint = loop_.step();
   while (state_.box.volume() > target_volume * (1.0 + 1e-12)) {
     const std::int64_t every = checkpoints_->every();
-    if (interrupt_requested() || (every > 0 && loop_.step() - last_checkpoint >= every)) {
-      checkpoints_->tick(every > 0 ? every : 1, "cycle " + std::to_string(loop_.step()));
-      last_checkpoint = loop_.step();
-    }
+    const bool due = every > 0 && loop_.step() - last_checkpoint >= every;
+    checkpoints_->tick_if(due, "cycle " + std::to_string(loop_.step()));
+    if (due) last_checkpoint = loop_.step();
     const ValidPoint before_shrink = valid_point();
     engine_.rescale_allowing_overlaps(std::max(target_volume, state_.box.volume() * (1.0 - cursor_.quick_step)));
     engine_.set_overlap_removal(true);

@@ -5,12 +5,12 @@
 
 namespace anisodyn::run {
 
-void CheckpointClock::tick(std::int64_t done, const std::string& where) {
+void CheckpointClock::tick_if(bool due, const std::string& where) {
   if (interrupt_requested()) {
     write();
     throw Interrupted("checkpoint written at " + where + "; run again to resume");
   }
-  if (every_ > 0 && done % every_ == 0) write();
+  if (due) write();
 }
 
 }  // namespace anisodyn::run
