@@ -9,9 +9,11 @@
 #include "anisodyn/interactions/hard_overlap.hpp"
 #include "anisodyn/mc/mc_engine.hpp"
 #include "brute_force_search.hpp"
+#include "lattice_states.hpp"
 
 using namespace anisodyn;
 using anisodyn::testing_support::brute_force_overlaps;
+using anisodyn::testing_support::lattice_of;
 
 namespace {
 
@@ -31,15 +33,6 @@ void compare_trials(const State& s, const HardOverlap& ho, Rng& rng, int trials,
   // Both outcomes must occur, or the comparison says little.
   EXPECT_GT(hits, trials / 20);
   EXPECT_LT(hits, trials - trials / 20);
-}
-
-/// n particles of one species on a lattice at packing fraction eta, aligned.
-State lattice_of(const Species& species, std::size_t n, double eta, Rng& rng) {
-  State s;
-  s.species.push_back(species);
-  s.box = Box(box_edges_for_packing_fraction(s.species, {n}, eta, Vec3::Ones()));
-  place_on_lattice(s, PlacementRequest{{n}, {OrientationRule{}}, 10000}, rng);
-  return s;
 }
 
 }  // namespace

@@ -9,27 +9,6 @@
 
 namespace anisodyn {
 
-void MoveCounters::reset(std::size_t nspecies) {
-  translate_tried.assign(nspecies, 0);
-  translate_accepted.assign(nspecies, 0);
-  rotate_tried.assign(nspecies, 0);
-  rotate_accepted.assign(nspecies, 0);
-  volume_tried = volume_accepted = 0;
-}
-
-MoveCounters MoveCounters::since(const MoveCounters& earlier) const {
-  MoveCounters d = *this;
-  for (std::size_t s = 0; s < d.translate_tried.size(); ++s) {
-    d.translate_tried[s] -= earlier.translate_tried[s];
-    d.translate_accepted[s] -= earlier.translate_accepted[s];
-    d.rotate_tried[s] -= earlier.rotate_tried[s];
-    d.rotate_accepted[s] -= earlier.rotate_accepted[s];
-  }
-  d.volume_tried -= earlier.volume_tried;
-  d.volume_accepted -= earlier.volume_accepted;
-  return d;
-}
-
 namespace {
 std::string describe_pair(const State& s, std::int32_t i, std::int32_t j) {
   return "particles " + std::to_string(s.particles.id[static_cast<std::size_t>(i)]) + " and " +
@@ -62,8 +41,32 @@ void McEngine::set_pressure(std::optional<double> beta_pressure, BoxMoves moves)
   box_moves_ = moves;
 }
 
+void McEngine::set_domain_sweeps(bool on) {
+  if (on && !domains_) domains_ = std::make_unique<DomainSweep>();
+  if (!on) {
+    refresh_overlap();
+    domains_.reset();
+  }
+}
+
+void McEngine::refresh_overlap() {
+  if (overlap_stale_) rebuild_overlap();
+}
+
+void McEngine::rebuild_overlap() {
+  overlap_.rebuild(state_);
+  overlap_stale_ = false;
+}
+
 void McEngine::cycle() {
   const std::size_t n = state_.particles.size();
+  if (domains_) {
+    domains_->cycle(state_, rng_, moves_, field_, removing_overlaps_, counters_);
+    overlap_stale_ = true;
+    if (beta_pressure_) volume_move();
+    return;
+  }
+  refresh_overlap();
   if (!beta_pressure_) {
     for (std::size_t t = 0; t < n; ++t) particle_move();
     return;
@@ -76,53 +79,8 @@ void McEngine::cycle() {
 }
 
 void McEngine::particle_move() {
-  Particles& p = state_.particles;
-  const std::int32_t i = static_cast<std::int32_t>(rng_.index(p.size()));
-  const std::size_t ui = static_cast<std::size_t>(i);
-  const int s = p.species[ui];
-  const Shape& shape = state_.species[static_cast<std::size_t>(s)].shape;
-  const Mat3& rot = overlap_.rotation(i);
-  const bool rotate = shape.is_anisotropic() && rng_.uniform() < 0.5;
-
-  if (!rotate) {
-    const double d = moves_.translate[static_cast<std::size_t>(s)];
-    const Vec3 body(rng_.uniform(-d, d), rng_.uniform(-d, d), rng_.uniform(-d, d));
-    Vec3 r = p.position(ui) + rot * body;
-    Int3 image = p.image(ui);
-    state_.box.wrap(r, image);
-    counters_.translate_tried[static_cast<std::size_t>(s)]++;
-    if (blocked(i, r, rot, p.position(ui), rot)) return;
-    p.set_position(ui, r);
-    p.set_image(ui, image);
-    overlap_.moved(i, r, rot);
-    counters_.translate_accepted[static_cast<std::size_t>(s)]++;
-    return;
-  }
-
-  const double a = moves_.rotate[static_cast<std::size_t>(s)];
-  const Vec3 theta(rng_.uniform(-a, a), rng_.uniform(-a, a), rng_.uniform(-a, a));
-  const Quat q = rotate_in_body_frame(p.orientation(ui), theta);
-  const Mat3 new_rot = q.toRotationMatrix();
-  counters_.rotate_tried[static_cast<std::size_t>(s)]++;
-  if (field_.active()) {
-    // Metropolis on the field energy first: it is cheap and rejects before the overlap search.
-    const double dU = field_.energy(new_rot) - field_.energy(rot);
-    if (dU > 0.0 && rng_.uniform() >= std::exp(-dU)) return;
-  }
-  const Vec3 r = p.position(ui);
-  if (blocked(i, r, new_rot, r, rot)) return;
-  p.set_orientation(ui, q);
-  overlap_.moved(i, r, new_rot);
-  counters_.rotate_accepted[static_cast<std::size_t>(s)]++;
-}
-
-bool McEngine::blocked(std::int32_t i, const Vec3& r_new, const Mat3& rot_new, const Vec3& r_old, const Mat3& rot_old) const {
-  if (!removing_overlaps_) return overlap_.overlaps(i, r_new, rot_new);
-  // A clean particle stays clean; an overlapping one may only move if that lowers its count.
-  // (Allowing equal counts lets it wander deeper into its partner, and removal then stalls.)
-  const int before = overlap_.count_overlaps(i, r_old, rot_old);
-  if (before == 0) return overlap_.overlaps(i, r_new, rot_new);
-  return overlap_.count_overlaps(i, r_new, rot_new) >= before;
+  const auto i = static_cast<std::int32_t>(rng_.index(state_.particles.size()));
+  TrialMove{state_, overlap_, rng_, counters_, moves_, field_, removing_overlaps_, nullptr}.attempt(i);
 }
 
 void McEngine::rescale_allowing_overlaps(double volume) {
@@ -130,7 +88,7 @@ void McEngine::rescale_allowing_overlaps(double volume) {
   const Vec3 new_edges = old_edges * std::cbrt(volume / state_.box.volume());
   rescale_positions(new_edges.cwiseQuotient(old_edges));
   state_.box.set_edges(new_edges);
-  overlap_.rebuild(state_);
+  rebuild_overlap();
 }
 
 void McEngine::rescale_positions(const Vec3& factor) {
@@ -151,13 +109,13 @@ bool McEngine::any_overlap_after_rescale(const Vec3& new_edges) {
   saved_z_ = p.z;
   rescale_positions(new_edges.cwiseQuotient(old_edges));
   state_.box.set_edges(new_edges);
-  overlap_.rebuild(state_);
+  rebuild_overlap();
   if (!overlap_.first_overlap()) return false;
   p.x.swap(saved_x_);
   p.y.swap(saved_y_);
   p.z.swap(saved_z_);
   state_.box.set_edges(old_edges);
-  overlap_.rebuild(state_);
+  rebuild_overlap();
   return true;
 }
 
@@ -183,7 +141,7 @@ void McEngine::volume_move() {
   if (radial && new_volume >= old_volume) {
     rescale_positions(new_edges.cwiseQuotient(old_edges));
     state_.box.set_edges(new_edges);
-    overlap_.rebuild(state_);
+    rebuild_overlap();
   } else if (any_overlap_after_rescale(new_edges)) {
     return;
   }
@@ -197,7 +155,7 @@ bool McEngine::try_rescale(double volume) {
   if (volume >= state_.box.volume()) {
     rescale_positions(new_edges.cwiseQuotient(old_edges));
     state_.box.set_edges(new_edges);
-    overlap_.rebuild(state_);
+    rebuild_overlap();
     return true;
   }
   return !any_overlap_after_rescale(new_edges);
@@ -222,7 +180,7 @@ double McEngine::field_energy() const {
   double u = 0.0;
   for (std::size_t i = 0; i < state_.particles.size(); ++i) {
     if (state_.species[static_cast<std::size_t>(state_.particles.species[i])].shape.is_anisotropic())
-      u += field_.energy(overlap_.rotation(static_cast<std::int32_t>(i)));
+      u += field_.energy(state_.particles.orientation(i).toRotationMatrix());
   }
   return u;
 }

@@ -47,6 +47,7 @@ McRunner::McRunner(State& state, const McProtocol& protocol, bool quiet)
       quiet_(quiet),
       loop_(state, *this, protocol.frames, protocol.observe_every) {
   engine_.set_field(protocol.field);
+  engine_.set_domain_sweeps(protocol.domain_sweeps);
   tune_mark_ = sample_mark_ = engine_.counters();
   summary_["phases"] = nlohmann::json::array();
 }

@@ -72,6 +72,7 @@ McProtocol parse_mc_protocol(tool::ConfigNode& cfg) {
   if (p.target_acceptance >= 1.0) cfg.fail("target_acceptance", "expected an acceptance between 0 and 1");
   p.tune_every = cfg.positive_integer("tune_every", 100);
   p.observe_every = cfg.positive_integer("observe_every", 10);
+  p.domain_sweeps = cfg.choice("sweeps", {"sequential", "domains"}, "sequential") == "domains";
   p.frames = run::parse_frame_rules(cfg, run::StepUnit::cycles(), run::FrameUse::Preparation);
   p.field = run::parse_field_config(cfg, run::FieldUse::Constant).orientational;
   auto phases = cfg.objects("phases");

@@ -4,35 +4,20 @@
 // at constant pressure, volume moves in ln V (isotropic or one box axis at a time). Move sizes may
 // be tuned towards a target acceptance; that is for preparation runs only (never in DMC).
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include "anisodyn/core/rng.hpp"
 #include "anisodyn/interactions/hard_overlap.hpp"
 #include "anisodyn/interactions/orientational_field.hpp"
+#include "anisodyn/mc/domain_sweep.hpp"
+#include "anisodyn/mc/trial_move.hpp"
 #include "anisodyn/system/state.hpp"
 
 namespace anisodyn {
 
 enum class BoxMoves { Isotropic, PerAxis };
-
-struct MoveSizes {
-  std::vector<double> translate;  // per species: largest body-frame displacement per axis
-  std::vector<double> rotate;     // per species: largest body-frame rotation angle per axis [rad]
-  double log_volume = 0.01;       // largest change of ln V (or ln L_k) per volume move
-};
-
-struct MoveCounters {
-  std::vector<std::int64_t> translate_tried, translate_accepted, rotate_tried, rotate_accepted;
-  std::int64_t volume_tried = 0, volume_accepted = 0;
-
-  void reset(std::size_t nspecies);
-  /// Counts accumulated since `earlier` (a copy taken before).
-  MoveCounters since(const MoveCounters& earlier) const;
-  static double ratio(std::int64_t accepted, std::int64_t tried) {
-    return tried > 0 ? static_cast<double>(accepted) / static_cast<double>(tried) : 0.0;
-  }
-};
 
 class McEngine {
  public:
@@ -43,8 +28,14 @@ class McEngine {
   /// Constant-pressure moves with βP (in the study's length unit), or none for NVT.
   void set_pressure(std::optional<double> beta_pressure, BoxMoves moves = BoxMoves::Isotropic);
 
-  /// One cycle: N particle trial moves, plus on average one volume move under NPT.
+  /// One cycle: N particle trial moves, plus on average one volume move under NPT. With domain
+  /// sweeps, the particle moves are one DomainSweep cycle (two slabs, two threads) followed, under
+  /// NPT, by one volume move.
   void cycle();
+  /// Domain sweeps on or off (off: the sequential random choice, the default). Preparation only:
+  /// the trajectory differs from the sequential one, the distribution sampled does not.
+  void set_domain_sweeps(bool on);
+  bool domain_sweeps() const { return domains_ != nullptr; }
   /// Scales every move size by acceptance/target (bounded by a factor 2 either way), using the
   /// acceptance counted in `window`.
   void tune(double target_acceptance, const MoveCounters& window);
@@ -69,18 +60,21 @@ class McEngine {
   const State& state() const { return state_; }
   /// Total field energy βU of the configuration.
   double field_energy() const;
-  const HardOverlap& overlap() const { return overlap_; }
+  const HardOverlap& overlap() {
+    refresh_overlap();
+    return overlap_;
+  }
 
  private:
   void particle_move();
   void volume_move();
+  /// Brings the neighbour structures up to date after domain sweeps moved particles behind them.
+  void refresh_overlap();
+  void rebuild_overlap();
   /// Rescales the box and positions to `new_edges`; if that creates an overlap, restores the
   /// previous box and the saved positions bit for bit and returns true.
   bool any_overlap_after_rescale(const Vec3& new_edges);
   void rescale_positions(const Vec3& factor);
-  /// Whether the hard cores forbid moving particle i from (r_old, rot_old) to (r_new, rot_new).
-  bool blocked(std::int32_t i, const Vec3& r_new, const Mat3& rot_new, const Vec3& r_old, const Mat3& rot_old) const;
-
   State& state_;
   Rng rng_;
   HardOverlap overlap_;
@@ -90,6 +84,8 @@ class McEngine {
   BoxMoves box_moves_ = BoxMoves::Isotropic;
   MoveSizes moves_;
   MoveCounters counters_;
+  std::unique_ptr<DomainSweep> domains_;
+  bool overlap_stale_ = false;
   std::vector<double> saved_x_, saved_y_, saved_z_;  // positions before a trial rescaling
 };
 

@@ -61,6 +61,7 @@ struct McProtocol {
   double target_acceptance = 0.35;
   std::int64_t tune_every = 100;
   std::int64_t observe_every = 10;
+  bool domain_sweeps = false;  // "sweeps": "domains" (mc/domain_sweep.hpp), else sequential
   run::FrameRules frames;  // none: the final frame only
   OrientationalField field;
   std::vector<McPhase> phases;

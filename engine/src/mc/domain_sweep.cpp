@@ -1,0 +1,119 @@
+#include "anisodyn/mc/domain_sweep.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace anisodyn {
+
+namespace {
+
+/// Stream of the slab generators (their seeds come from the engine's generator).
+constexpr std::uint64_t kSlabStream = 0x736c6162;  // "slab"
+
+int slab_threads() {
+#ifdef _OPENMP
+  return std::min(DomainSweep::kSlabs, omp_get_max_threads());
+#else
+  return 1;
+#endif
+}
+
+void append_particle(Particles& to, const Particles& from, std::size_t i) {
+  to.add(from.species[i], from.position(i), from.orientation(i), from.id[i]);
+  to.set_image(to.size() - 1, from.image(i));
+}
+
+void clear_particles(Particles& p) {
+  for (auto* v : {&p.x, &p.y, &p.z, &p.qw, &p.qx, &p.qy, &p.qz}) v->clear();
+  for (auto* v : {&p.ix, &p.iy, &p.iz, &p.species}) v->clear();
+  p.id.clear();
+}
+
+}  // namespace
+
+void DomainSweep::cycle(State& state, Rng& rng, const MoveSizes& moves, const OrientationalField& field, bool removing_overlaps,
+                        MoveCounters& counters) {
+  const Particles& p = state.particles;
+  const std::size_t n = p.size();
+  const int axis = static_cast<int>(rng.index(3));
+  const double L = state.box.edges()[axis];
+  const double start = rng.uniform() * L;
+  std::array<std::uint64_t, kSlabs> seeds{};
+  for (auto& s : seeds) s = rng.bits();
+
+  half_extent_.resize(n);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i)
+    half_extent_[i] = state.species[static_cast<std::size_t>(p.species[i])].shape.lab_half_extents(p.orientation(i).toRotationMatrix())[axis];
+
+  for (int k = 0; k < kSlabs; ++k) parts_[static_cast<std::size_t>(k)].slab = Slab{axis, start + k * L / kSlabs, L / kSlabs};
+#pragma omp parallel for num_threads(slab_threads()) schedule(static, 1)
+  for (int k = 0; k < kSlabs; ++k) gather(state, parts_[static_cast<std::size_t>(k)]);
+
+  std::size_t movable = 0;
+  for (const Part& part : parts_) movable += part.movable.size();
+  if (movable == 0) return;  // every particle straddles a cut: nothing moves this cycle
+#pragma omp parallel for num_threads(slab_threads()) schedule(static, 1)
+  for (int k = 0; k < kSlabs; ++k) {
+    Part& part = parts_[static_cast<std::size_t>(k)];
+    const auto trials = std::llround(static_cast<double>(part.movable.size()) * static_cast<double>(n) / static_cast<double>(movable));
+    sweep(state, part, seeds[static_cast<std::size_t>(k)], trials, moves, field, removing_overlaps);
+  }
+  for (const Part& part : parts_) counters.add_particle_moves(part.counters);
+}
+
+void DomainSweep::gather(const State& state, Part& part) const {
+  const Particles& p = state.particles;
+  const double L = state.box.edges()[part.slab.axis];
+  // Movable: strictly inside the slab, by a margin far above round-off, so that movable bodies of
+  // different slabs are always apart. Copied: every body that reaches into the slab (a superset
+  // of those a movable body can touch).
+  const double margin = 1e-9 * L;
+  const Slab inner{part.slab.axis, part.slab.start + margin, part.slab.width - 2.0 * margin};
+  const Slab outer{part.slab.axis, part.slab.start - margin, part.slab.width + 2.0 * margin};
+  if (part.sub.species.size() != state.species.size()) part.sub.species = state.species;
+  part.sub.box = state.box;
+  clear_particles(part.sub.particles);
+  part.global.clear();
+  part.movable.clear();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double c = p.position(i)[part.slab.axis], h = half_extent_[i];
+    if (!outer.reaches(c, h, L)) continue;
+    if (inner.holds(c, h, L)) part.movable.push_back(static_cast<std::int32_t>(part.global.size()));
+    part.global.push_back(static_cast<std::int32_t>(i));
+    append_particle(part.sub.particles, p, i);
+  }
+  part.counters.reset(state.species.size());
+}
+
+void DomainSweep::sweep(State& state, Part& part, std::uint64_t seed, std::int64_t trials, const MoveSizes& moves,
+                        const OrientationalField& field, bool removing_overlaps) {
+  if (part.overlap) part.overlap->rebuild(part.sub);
+  else part.overlap.emplace(part.sub);
+  Rng rng(seed, kSlabStream);
+  const TrialMove move{part.sub, *part.overlap, rng, part.counters, moves, field, removing_overlaps, &part.slab};
+  const std::uint64_t n = part.movable.size();
+  for (std::int64_t t = 0; t < trials; ++t) move.attempt(part.movable[rng.index(n)]);
+  // Only movable particles changed; they belong to this slab alone.
+  Particles& to = state.particles;
+  const Particles& from = part.sub.particles;
+  for (const std::int32_t s : part.movable) {
+    const auto us = static_cast<std::size_t>(s);
+    const auto g = static_cast<std::size_t>(part.global[us]);
+    to.set_position(g, from.position(us));
+    to.set_image(g, from.image(us));
+    to.set_orientation(g, from.orientation(us));
+  }
+}
+
+std::array<std::size_t, DomainSweep::kSlabs> DomainSweep::last_movable() const {
+  std::array<std::size_t, kSlabs> m{};
+  for (int k = 0; k < kSlabs; ++k) m[static_cast<std::size_t>(k)] = parts_[static_cast<std::size_t>(k)].movable.size();
+  return m;
+}
+
+}  // namespace anisodyn

@@ -1,0 +1,150 @@
+// Domain sweeps (mc/domain_sweep.hpp), the two-slab decomposition of MC preparation:
+//   - Slab::holds / reaches against an enumeration of periodic images;
+//   - dense rods never overlap after many cycles, every particle gets moved, and one and two
+//     threads give the same bits;
+//   - the sampled distribution is the hard-particle one: two hard spheres' separation against its
+//     exact law and hard spheres' NPT packing fraction against the sequential sweep's (the ideal
+//     gas's NPT volume against (N + 1)/βP is in test_mc_engine).
+// Averages are compared within 4 standard errors (block averages).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "anisodyn/core/statistics.hpp"
+#include "anisodyn/mc/mc_engine.hpp"
+#include "lattice_states.hpp"
+#include "thread_count.hpp"
+
+using namespace anisodyn;
+using anisodyn::testing_support::lattice_of;
+using anisodyn::testing_support::on_thread_counts;
+
+namespace {
+
+const Species kRod{"rod", Shape::cuboid(1.0, 1.0, 12.0), 1.0, {}, {}};
+const Species kSphere{"hs", Shape::sphere(1.0), 1.0, {}, {}};
+
+/// Minimum-image distance between particles 0 and 1.
+double separation(const State& s) {
+  return s.box.min_image(s.particles.position(1) - s.particles.position(0)).norm();
+}
+
+}  // namespace
+
+TEST(Slab, HoldsAndReachesAsThePeriodicImagesSay) {
+  Rng rng(5, 0);
+  const double L = 10.0;
+  int held = 0, reached = 0;
+  for (int t = 0; t < 20000; ++t) {
+    const Slab slab{0, rng.uniform(-20.0, 20.0), L / 2};
+    const double c = rng.uniform(0.0, L), h = rng.uniform(0.0, 2.4);
+    bool inside = false, meets = false;
+    for (int image = -3; image <= 3; ++image) {
+      const double lo = c - h + image * L, hi = c + h + image * L;
+      inside = inside || (lo > slab.start && hi < slab.start + slab.width);
+      meets = meets || (lo <= slab.start + slab.width && hi >= slab.start);
+    }
+    ASSERT_EQ(slab.holds(c, h, L), inside) << "start " << slab.start << " c " << c << " h " << h;
+    ASSERT_EQ(slab.reaches(c, h, L), meets) << "start " << slab.start << " c " << c << " h " << h;
+    held += inside;
+    reached += meets;
+  }
+  EXPECT_GT(held, 2000);
+  EXPECT_LT(reached, 19000);
+}
+
+TEST(DomainSweep, DenseRodsNeverOverlapAndTheBitsDoNotDependOnTheThreadCount) {
+  Rng rng(11, 0);
+  const State start = lattice_of(kRod, 500, 0.30, rng);
+  const auto runs = on_thread_counts({1, 2}, [&] {
+    State s = start;
+    McEngine mc(s, RngState{21, 0, 0, 4});
+    mc.set_domain_sweeps(true);
+    mc.move_sizes().translate[0] = 0.3;
+    mc.move_sizes().rotate[0] = 0.05;
+    int idle = 0;
+    for (int c = 0; c < 60; ++c) {
+      const MoveCounters before = mc.counters();
+      mc.cycle();
+      // N trials per cycle, split between the slabs (each rounds its share), unless no body fits
+      // inside a slab: on this lattice, two layers of rods half a box apart, a cut along the rods
+      // mostly leaves none.
+      const MoveCounters w = mc.counters().since(before);
+      const auto tried = w.translate_tried[0] + w.rotate_tried[0];
+      if (tried == 0) ++idle;
+      else EXPECT_NEAR(static_cast<double>(tried), 500.0, 1.0) << "cycle " << c;
+    }
+    EXPECT_LT(idle, 30);
+    EXPECT_FALSE(mc.overlap().first_overlap().has_value());
+    const MoveCounters& n = mc.counters();
+    EXPECT_GT(n.translate_accepted[0], 0);
+    EXPECT_LT(n.translate_accepted[0], n.translate_tried[0]);
+    return s.particles;
+  });
+  EXPECT_EQ(0, std::memcmp(runs[0].x.data(), runs[1].x.data(), runs[0].x.size() * sizeof(double)));
+  EXPECT_EQ(0, std::memcmp(runs[0].qz.data(), runs[1].qz.data(), runs[0].qz.size() * sizeof(double)));
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < start.particles.size(); ++i) moved += runs[0].x[i] != start.particles.x[i] || runs[0].qw[i] != start.particles.qw[i];
+  EXPECT_EQ(moved, start.particles.size());
+}
+
+TEST(DomainSweep, TwoHardSpheresSampleTheExactSeparationLaw) {
+  // Sphere 1 is uniform over the box outside the excluded sphere around sphere 0: the fraction of
+  // samples with 1 ≤ r < b is (4π/3)(b³ − 1)/(L³ − 4π/3) for b ≤ L/2.
+  const double L = 4.0;
+  State s;
+  s.box = Box(Vec3::Constant(L));
+  s.species.push_back(kSphere);
+  s.particles.add(0, Vec3(1, 1, 1), Quat::Identity(), 0);
+  s.particles.add(0, Vec3(3, 3, 3), Quat::Identity(), 1);
+  McEngine mc(s, RngState{8, 0, 0, 4});
+  mc.set_domain_sweeps(true);
+  mc.move_sizes().translate[0] = 0.7;
+  const double edges[] = {1.25, 1.5, 1.75, 2.0};
+  std::vector<std::vector<double>> inside(4);
+  for (int c = 0; c < 200000; ++c) {
+    mc.cycle();
+    const double r = separation(s);
+    ASSERT_GE(r, 1.0) << "cycle " << c;
+    for (int b = 0; b < 4; ++b) inside[static_cast<std::size_t>(b)].push_back(r < edges[b] ? 1.0 : 0.0);
+  }
+  const double free_volume = L * L * L - 4.0 * M_PI / 3.0;
+  for (int b = 0; b < 4; ++b) {
+    const MeanError m = block_average(inside[static_cast<std::size_t>(b)]);
+    const double exact = 4.0 * M_PI / 3.0 * (std::pow(edges[b], 3) - 1.0) / free_volume;
+    EXPECT_NEAR(m.mean, exact, 4.0 * m.error) << "r < " << edges[b] << ": " << m.mean << " ± " << m.error;
+    EXPECT_LT(m.error, 0.1 * exact);
+  }
+}
+
+TEST(DomainSweep, HardSpheresNptPackingFractionMatchesTheSequentialSweep) {
+  Rng rng(4, 0);
+  const State start = lattice_of(kSphere, 216, 0.40, rng);
+  auto mean_eta = [&](bool domains) {
+    State s = start;
+    McEngine mc(s, RngState{31, 0, 0, 4});
+    mc.set_domain_sweeps(domains);
+    mc.set_pressure(5.3);  // Carnahan–Starling: η ≈ 0.40
+    MoveCounters mark = mc.counters();
+    for (int c = 0; c < 1000; ++c) {
+      mc.cycle();
+      if (c % 50 == 49) {
+        mc.tune(0.35, mc.counters().since(mark));
+        mark = mc.counters();
+      }
+    }
+    std::vector<double> eta;
+    for (int c = 0; c < 6000; ++c) {
+      mc.cycle();
+      eta.push_back(s.packing_fraction());
+    }
+    EXPECT_FALSE(mc.overlap().first_overlap().has_value());
+    return block_average(eta);
+  };
+  const MeanError sequential = mean_eta(false), domains = mean_eta(true);
+  std::printf("eta: sequential %.5f ± %.5f, domains %.5f ± %.5f\n", sequential.mean, sequential.error, domains.mean, domains.error);
+  EXPECT_NEAR(domains.mean, sequential.mean, 4.0 * std::hypot(sequential.error, domains.error));
+  EXPECT_LT(std::hypot(sequential.error, domains.error), 0.005);
+  EXPECT_NEAR(sequential.mean, 0.40, 0.03);  // the pressure was chosen for it
+}
