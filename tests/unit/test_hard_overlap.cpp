@@ -88,3 +88,17 @@ TEST(HardOverlap, SpheresInALargeBoxKeepTheGrid) {
   const State s = lattice_of(Species{"hs", Shape::sphere(1.0), 1.0, {}, {}}, 500, 0.3, rng);
   EXPECT_FALSE(HardOverlap(s).uses_tree(0, 0));
 }
+
+TEST(HardOverlap, AlignedRodsInABoxOfManyCellsTakeTheTree) {
+  // 6000 rods 12×1×1 at η = 0.2: a box of 6 cells, so the grid does not scan every cell, but a
+  // query's 27 cells hold ~100 times the volume of the rods' lab boxes (the tree wins). The
+  // same rods turned at random (overlapping, which the choice does not look at) keep the grid.
+  Rng rng(8, 0);
+  const State rods = lattice_of(Species{"rod", Shape::cuboid(1.0, 1.0, 12.0), 1.0, {}, {}}, 6000, 0.2, rng);
+  const HardOverlap ho(rods);
+  ASSERT_TRUE(ho.uses_tree(0, 0));
+  compare_trials(rods, ho, rng, 3000, 0.4);
+  State turned = rods;
+  for (std::size_t i = 0; i < turned.particles.size(); ++i) turned.particles.set_orientation(i, uniform_quaternion(rng.uniform(), rng.uniform(), rng.uniform()));
+  EXPECT_FALSE(HardOverlap(turned).uses_tree(0, 0));
+}

@@ -56,11 +56,32 @@ void HardOverlap::rebuild(const State& state) {
 
 void HardOverlap::choose_searches() {
   const auto ns = static_cast<std::size_t>(nspecies_);
+  const std::vector<Vec3> h = mean_lab_half_extents();
   tree_pair_.assign(ns * ns, 0);
   for (int a = 0; a < nspecies_; ++a)
-    for (int b = 0; b < nspecies_; ++b)
-      tree_pair_[static_cast<std::size_t>(a * nspecies_ + b)] = cells_.grid(b).scans_all_cells(cutoff(a, b));
+    for (int b = 0; b < nspecies_; ++b) {
+      const SpeciesGrid& grid = cells_.grid(b);
+      // Candidates per query ∝ the volume searched: the cells visited, or the sum of the two
+      // lab boxes (what the tree's box test keeps, for uncorrelated positions).
+      const Vec3 reach = 2.0 * (h[static_cast<std::size_t>(a)] + h[static_cast<std::size_t>(b)]);
+      const bool tree = grid.scans_all_cells(cutoff(a, b)) || grid.query_volume(cutoff(a, b)) > kTreeAdvantage * reach.prod();
+      tree_pair_[static_cast<std::size_t>(a * nspecies_ + b)] = tree;
+    }
   build_trees();
+}
+
+std::vector<Vec3> HardOverlap::mean_lab_half_extents() const {
+  const Particles& p = state_->particles;
+  std::vector<Vec3> sum(static_cast<std::size_t>(nspecies_), Vec3::Zero());
+  std::vector<double> count(static_cast<std::size_t>(nspecies_), 0.0);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const auto s = static_cast<std::size_t>(p.species[i]);
+    sum[s] += state_->species[s].shape.lab_half_extents(rot_[i]);
+    count[s] += 1.0;
+  }
+  for (std::size_t s = 0; s < sum.size(); ++s)  // no particles yet: the bounding sphere
+    sum[s] = count[s] > 0.0 ? Vec3(sum[s] / count[s]) : Vec3::Constant(state_->species[s].shape.circumradius());
+  return sum;
 }
 
 Vec3 HardOverlap::bounding_half_extents(int a, const Mat3& rot) const {

@@ -4,9 +4,10 @@
 // (neighbors/skin_list.hpp). Contact counts as overlap (spec 10 §1.4).
 //
 // Candidates of species b come from b's cell grid unless a query of some species a would make
-// that grid visit every cell (long particles in a box a few cut-offs wide); then from an AABB
-// tree over b's lab boxes (neighbors/aabb_tree.hpp), chosen per pair (a, b) and rebuilt after as
-// many accepted moves as b has particles. Both hand the overlap kernels the separations the
+// that grid visit every cell (long particles in a box a few cut-offs wide) or search a volume
+// much larger than the lab boxes of a and b (long particles, aligned or not, in any box); then from
+// an AABB tree over b's lab boxes (neighbors/aabb_tree.hpp), chosen per pair (a, b) at every
+// rebuild and rebuilt after as many accepted moves as b has particles. Both hand the overlap kernels the separations the
 // grid's all-cells scan formed, so the outcomes are the same bits either way.
 #include <cstdint>
 #include <optional>
@@ -82,8 +83,18 @@ class HardOverlap {
   /// Links i (whose reference is set) with every referenced j ≥ first_j whose grown reference
   /// body overlaps i's.
   void link_partners(std::int32_t i, std::int32_t first_j);
-  /// Chooses grid or tree per species pair and builds the trees needed.
+  /// Chooses grid or tree per species pair and builds the trees needed: the tree where the grid
+  /// would visit every cell, or a volume kTreeAdvantage times what the tree's box test keeps.
   void choose_searches();
+  /// Per species: the mean lab-box half-extents of its particles (its circumradius if it has none).
+  std::vector<Vec3> mean_lab_half_extents() const;
+  /// A tree candidate costs more than a grid candidate (a node walk against a vectorised
+  /// distance pass): the grid keeps pairs whose searched volume is within this factor of the
+  /// tree's. Measured (bench/mc_throughput.cpp, docs/performance.md): at a volume ratio of 3.6
+  /// (spheres, η = 0.40) the grid is 3.3× faster, at 20 (boards 12×3.46×1, η = 0.20) 1.2×, at 19.5
+  /// (boards 12×8×1, η = 0.34) as fast; at 115 (8000 rods 12×1×1, η = 0.34) the tree is 2.7×
+  /// faster, at 364 (those rods' queries of 200 small spheres) 1.15×.
+  static constexpr double kTreeAdvantage = 50.0;
   void build_trees();
   void rebuild_tree(int b);
   bool tree_needed(int b) const { return tree_needed_[static_cast<std::size_t>(b)] != 0; }

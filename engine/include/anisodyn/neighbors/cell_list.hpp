@@ -51,6 +51,12 @@ class SpeciesGrid {
       if (span(rc, k) >= n_[k] || span(rc, k) > kMaxSpan) return true;
     return false;
   }
+  /// Volume of the cells a query with cut-off rc visits (the whole box when it scans all cells).
+  double query_volume(double rc) const {
+    double v = 1.0;
+    for (int k = 0; k < 3; ++k) v *= std::min(span(rc, k), n_[k]) * h_[k];
+    return v;
+  }
 
  private:
   static constexpr int kMaxSpan = 16;
