@@ -9,9 +9,12 @@
 //   (e) 2000 boards 12×1×1 + 200 spheres d = 0.1 in the pure-board box of η = 0.15 (isotropic,
 //       54.29 T) and of η = 0.34 (aligned start, N_U⁺, 41.33 T), δt = 10⁻² for both species
 //       (the balanced board step is 1.04×10⁻² at η = 0.15: docs/validation.md).
+// and issue 18's MC systems (a)–(d) run as DMC (BM_DmcMcSystems).
 // The board D tensors of (a) and (e) are the bead-model values of manifests/data/boards_L12_bead_model.species.json
 // (anisodyn-hydro); (b) and (c) use the published values (spec 10 §8); spheres use Stokes–Einstein.
 #include <benchmark/benchmark.h>
+
+#include <map>
 
 #include "anisodyn/dmc/dmc_engine.hpp"
 #include "anisodyn/system/order.hpp"
@@ -143,6 +146,30 @@ void BM_DmcMixtureA3Nematic(benchmark::State& bs) {
   report_board_order(bs, prepared);
 }
 
+// Issue 18's MC systems (bench/mc_throughput.cpp, same cached states) as DMC: fixed small moves
+// from the species' D tensors at δt = 10⁻² (boards) or 10⁻³ (spheres), acceptance > 0.9.
+//   0: (a) 2000 boards 12×3.46×1, η = 0.20;  1: (b) 4000 spheres, η = 0.40;
+//   2: (c) 2000 boards 12×1×1, η = 0.34;     3: (d) 2000 boards 12×8×1, η = 0.34 (quick-compressed).
+void BM_DmcMcSystems(benchmark::State& bs) {
+  static std::map<std::int64_t, State> prepared;
+  const std::int64_t k = bs.range(0);
+  if (!prepared.count(k)) {
+    const Species board_a{"board", Shape::cuboid(1.0, 3.4641, 12.0), 1.0, Vec3(0.01447, 0.01676, 0.020117), Vec3(6.1655e-4, 5.5102e-4, 2.7965e-3)};
+    const Species spheres{"hs", Shape::sphere(1.0), 1.0, Vec3::Constant(1.0 / (3.0 * M_PI)), Vec3::Zero()};
+    const Species wide{"board", Shape::cuboid(1.0, 8.0, 12.0), 1.0, Vec3(9.4e-3, 1.4e-2, 1.5e-2), Vec3(3.5e-4, 3.6e-4, 6.3e-4)};
+    State s = k == 0   ? bench::cached_melted_lattice("cuboids_12x3.46x1_N2000_eta0.20", board_a, 2000, 0.20, 20000)
+              : k == 1 ? bench::cached_melted_lattice("spheres_N4000_eta0.40", spheres, 4000, 0.40, 3000)
+              : k == 2 ? bench::cached_melted_lattice("cuboids_12x1x1_N2000_eta0.34", kBoardW1, 2000, 0.34, 5000)
+                       : bench::cached_compressed_lattice("cuboids_12x8x1_N2000_eta0.34_compressed", wide, 2000, 0.05, 0.34, 5000);
+    // Whatever the cache holds (the MC benchmark may have written it), time with these tensors.
+    const Species& sp = k == 0 ? board_a : k == 1 ? spheres : k == 2 ? kBoardW1 : wide;
+    s.species[0].D_trans = sp.D_trans;
+    s.species[0].D_rot = sp.D_rot;
+    prepared.emplace(k, std::move(s));
+  }
+  run_cycles(bs, prepared.at(k), {k == 1 ? 1e-3 : 1e-2}, [](DmcEngine&) {});
+}
+
 void three_seconds(benchmark::internal::Benchmark* b) { bench::min_time_or_fixed_iterations(b, 3.0); }
 
 }  // namespace
@@ -154,4 +181,5 @@ BENCHMARK(BM_DmcHardSpheres1000)->Arg(100)->Arg(10000)->Unit(benchmark::kMillise
 BENCHMARK(BM_DmcBoardsA3Isotropic)->Unit(benchmark::kMillisecond)->Apply(three_seconds);
 BENCHMARK(BM_DmcMixtureA3Isotropic)->Unit(benchmark::kMillisecond)->Apply(three_seconds);
 BENCHMARK(BM_DmcMixtureA3Nematic)->Unit(benchmark::kMillisecond)->Apply(three_seconds);
+BENCHMARK(BM_DmcMcSystems)->DenseRange(0, 3)->Unit(benchmark::kMillisecond)->Apply(three_seconds);
 BENCHMARK_MAIN();

@@ -4,10 +4,19 @@
 //   cuboids — N = 2000 boards 12×3.46×1 at η = 0.20 (isotropic);
 //   spheres — N = 4000 hard spheres at η = 0.40;
 //   rods nematic — N = 2000 boards 12×1×1 at η = 0.34 (from an aligned lattice: nematic);
-//   wide boards nematic — N = 2000 boards 12×8×1 at η = 0.34.
+//   rods nematic at N = 8000 and 32000 — the same density and preparation (cost per trial flat in N);
+//   rods + spheres — the 2000 rods with 200 spheres d = 0.1 (study A3's mixture);
+//   wide boards nematic — N = 2000 boards 12×8×1 at η = 0.34, quick-compressed from a dilute lattice;
+//   domain sweeps (two-thread preparation) on the first and third, with one and two threads.
 // The states (lattice at the target density melted by NVT) are prepared once and cached in $ANISODYN_BENCH_CACHE
 // (default: ./bench-cache) so repeated runs time only the production loop.
 #include <benchmark/benchmark.h>
+
+#include <map>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include "anisodyn/system/order.hpp"
 #include "support/prepared_state.hpp"
@@ -21,10 +30,8 @@ struct Prepared {
   MoveSizes moves;
 };
 
-Prepared prepare(const std::string& name, const Species& sp, std::size_t n, double eta, std::int64_t melt_cycles) {
-  Prepared p;
-  p.state = bench::cached_melted_lattice(name, sp, n, eta, melt_cycles);
-  // Tune to 35% on the cached state (not timed).
+/// Move sizes tuned to 35% acceptance on the prepared state (not timed).
+Prepared tuned(Prepared p) {
   McEngine mc(p.state, RngState{7, 0, 0, 4});
   for (int round = 0; round < 30; ++round) {
     const MoveCounters mark = mc.counters();
@@ -35,40 +42,104 @@ Prepared prepare(const std::string& name, const Species& sp, std::size_t n, doub
   return p;
 }
 
-void run_cycles(benchmark::State& bs, const Prepared& prepared) {
+Prepared prepare(const std::string& name, const Species& sp, std::size_t n, double eta, std::int64_t melt_cycles) {
+  Prepared p;
+  p.state = bench::cached_melted_lattice(name, sp, n, eta, melt_cycles);
+  return tuned(std::move(p));
+}
+
+std::int64_t particle_trials(const MoveCounters& w) {
+  std::int64_t n = 0;
+  for (std::size_t s = 0; s < w.translate_tried.size(); ++s) n += w.translate_tried[s] + w.rotate_tried[s];
+  return n;
+}
+
+/// Trial moves per second of MC cycles on a copy of the prepared state, sequential or by domain
+/// sweeps (mc/domain_sweep.hpp).
+void run_cycles(benchmark::State& bs, const Prepared& prepared, bool domains = false) {
   State state = prepared.state;
   McEngine mc(state, RngState{11, 0, 0, 4});
   mc.move_sizes() = prepared.moves;
+  mc.set_domain_sweeps(domains);
   const MoveCounters start = mc.counters();
-  std::int64_t trials = 0;
-  for (auto _ : bs) {
-    mc.cycle();
-    trials += static_cast<std::int64_t>(state.particles.size());
-  }
+  for (auto _ : bs) mc.cycle();
   const MoveCounters w = mc.counters().since(start);
   const double acc = static_cast<double>(w.translate_accepted[0] + w.rotate_accepted[0]) /
                      static_cast<double>(w.translate_tried[0] + w.rotate_tried[0]);
-  bs.counters["trials_per_s"] = benchmark::Counter(static_cast<double>(trials), benchmark::Counter::kIsRate);
+  bs.counters["trials_per_s"] = benchmark::Counter(static_cast<double>(particle_trials(w)), benchmark::Counter::kIsRate);
   bs.counters["acceptance"] = acc;
   bs.counters["eta"] = state.packing_fraction();
 }
 
-void BM_McCuboids2000(benchmark::State& bs) {
+const Prepared& cuboids_a() {
   static const Prepared p = prepare("cuboids_12x3.46x1_N2000_eta0.20", Species{"board", Shape::cuboid(1.0, 3.4641, 12.0), 1.0, {}, {}}, 2000, 0.20, 20000);
-  run_cycles(bs, p);
+  return p;
 }
+void BM_McCuboids2000(benchmark::State& bs) { run_cycles(bs, cuboids_a()); }
 void BM_McSpheres4000(benchmark::State& bs) {
   static const Prepared p = prepare("spheres_N4000_eta0.40", Species{"hs", Shape::sphere(1.0), 1.0, {}, {}}, 4000, 0.40, 3000);
   run_cycles(bs, p);
 }
 
+const Species kRod{"board", Shape::cuboid(1.0, 1.0, 12.0), 1.0, {}, {}};
+
+std::string rods_state_name(std::size_t n) { return "cuboids_12x1x1_N" + std::to_string(n) + "_eta0.34"; }
+
+const Prepared& rods_c() {
+  static const Prepared p = prepare(rods_state_name(2000), kRod, 2000, 0.34, 5000);
+  return p;
+}
 void BM_McRods2000Nematic(benchmark::State& bs) {
-  static const Prepared p = prepare("cuboids_12x1x1_N2000_eta0.34", Species{"board", Shape::cuboid(1.0, 1.0, 12.0), 1.0, {}, {}}, 2000, 0.34, 5000);
+  run_cycles(bs, rods_c());
+  bs.counters["U_L"] = body_axis_order(rods_c().state, 0)[2].order;
+}
+
+// Domain sweeps (MC preparation on two threads) on (a) and (c): range(0) = 0 for (a), 2 for (c);
+// range(1) = OpenMP threads. Wall-clock rates.
+void BM_McDomainSweeps(benchmark::State& bs) {
+  const Prepared& p = bs.range(0) == 0 ? cuboids_a() : rods_c();
+#ifdef _OPENMP
+  const int previous = omp_get_max_threads();
+  omp_set_num_threads(static_cast<int>(bs.range(1)));
+#endif
+  run_cycles(bs, p, true);
+#ifdef _OPENMP
+  omp_set_num_threads(previous);
+#endif
+}
+
+// The same rods at N = 8000 and 32000 (boxes 66 and 104 T): the cost per trial should not grow with N.
+void BM_McRodsNematicN(benchmark::State& bs) {
+  static std::map<std::int64_t, Prepared> prepared;
+  const std::int64_t n = bs.range(0);
+  if (!prepared.count(n)) prepared.emplace(n, prepare(rods_state_name(static_cast<std::size_t>(n)), kRod, static_cast<std::size_t>(n), 0.34, 5000));
+  const Prepared& p = prepared.at(n);
   run_cycles(bs, p);
   bs.counters["U_L"] = body_axis_order(p.state, 0)[2].order;
 }
+
+// Study A3's mixture at η = 0.34: the rods of (c) with 200 spheres d = 0.1 inserted (the DMC
+// benchmark's state; spheres take their own tuned translation).
+void BM_McRodsSpheres2200Nematic(benchmark::State& bs) {
+  static const Prepared p = [] {
+    Prepared q;
+    q.state = bench::cached_mixture("boards_12x1x1_N2000_spheres_d0.1_N200_eta0.34", rods_state_name(2000), kRod, 2000, 0.34, 5000,
+                                    Species{"hs", Shape::sphere(0.1), 1.0, {}, {}}, 200, 2000);
+    return tuned(std::move(q));
+  }();
+  run_cycles(bs, p);
+  bs.counters["U_L"] = body_axis_order(p.state, 0)[2].order;
+}
+
+// Wide boards: placed on a dilute lattice (η = 0.05) and quick-compressed, since their lattice at
+// η = 0.34 stacks them face to face and stays jammed under NVT.
 void BM_McWideBoards2000Nematic(benchmark::State& bs) {
-  static const Prepared p = prepare("cuboids_12x8x1_N2000_eta0.34", Species{"board", Shape::cuboid(1.0, 8.0, 12.0), 1.0, {}, {}}, 2000, 0.34, 5000);
+  static const Prepared p = [] {
+    Prepared q;
+    const Species sp{"board", Shape::cuboid(1.0, 8.0, 12.0), 1.0, {}, {}};
+    q.state = bench::cached_compressed_lattice("cuboids_12x8x1_N2000_eta0.34_compressed", sp, 2000, 0.05, 0.34, 5000);
+    return tuned(std::move(q));
+  }();
   run_cycles(bs, p);
   bs.counters["U_L"] = body_axis_order(p.state, 0)[2].order;
 }
@@ -76,6 +147,9 @@ void BM_McWideBoards2000Nematic(benchmark::State& bs) {
 }  // namespace
 
 BENCHMARK(BM_McRods2000Nematic)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_McDomainSweeps)->ArgsProduct({{0, 2}, {1, 2}})->Unit(benchmark::kMillisecond)->MinTime(2.0)->UseRealTime();
+BENCHMARK(BM_McRodsNematicN)->Arg(8000)->Arg(32000)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_McRodsSpheres2200Nematic)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_McWideBoards2000Nematic)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_McCuboids2000)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_McSpheres4000)->Unit(benchmark::kMillisecond)->MinTime(2.0);

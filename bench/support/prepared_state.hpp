@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "anisodyn/config/builder.hpp"
 #include "anisodyn/io/h5md.hpp"
@@ -48,26 +49,55 @@ State cached_state(const std::string& name, Make&& make) {
   return s;
 }
 
-/// NVT MC with move tuning on `s`, in place; logs the phase summary under `name`. The run's
+/// Runs `phases` of MC on `s`, in place; logs each phase's summary under `name`. The run's
 /// trajectory is not kept (the writer is dropped without commit, which removes it).
-inline void melt(State& s, const std::string& name, std::int64_t cycles) {
+inline void run_phases(State& s, const std::string& name, std::vector<McPhase> phases, const OrientationalField& field = {}) {
   McProtocol proto;
+  proto.phases = std::move(phases);
+  proto.field = field;
+  McRunner runner(s, proto, false);
+  io::H5mdWriter discarded(cache_dir() + "/" + name + ".prep.h5", {"anisodyn", "", "bench", nlohmann::json::object(),
+                                                                   nlohmann::json::object(), s.species});
+  runner.run(discarded, 0, [] {});
+  for (const auto& phase : runner.summary()["phases"])
+    std::fprintf(stderr, "prepared %s: %s\n", name.c_str(), phase.dump().c_str());
+}
+
+inline McPhase nvt_phase(std::int64_t cycles) {
   McPhase phase;
   phase.type = McPhase::Type::Nvt;
   phase.cycles = cycles;
   phase.tune = true;
-  proto.phases = {phase};
-  McRunner runner(s, proto, false);
-  io::H5mdWriter discarded(cache_dir() + "/" + name + ".melt.h5", {"anisodyn", "", "bench", nlohmann::json::object(),
-                                                                   nlohmann::json::object(), s.species});
-  runner.run(discarded, 0, [] {});
-  std::fprintf(stderr, "prepared %s: %s\n", name.c_str(), runner.summary()["phases"][0].dump().c_str());
+  return phase;
 }
+
+/// NVT MC with move tuning on `s`, in place.
+inline void melt(State& s, const std::string& name, std::int64_t cycles) { run_phases(s, name, {nvt_phase(cycles)}); }
 
 inline State cached_melted_lattice(const std::string& name, const Species& sp, std::size_t n, double eta, std::int64_t melt_cycles) {
   return cached_state(name, [&] {
     State s = lattice_at(sp, n, eta);
     melt(s, name, melt_cycles);
+    return s;
+  });
+}
+
+/// A lattice placed at the dilute packing fraction `eta_start`, quick-compressed to `eta` with the
+/// body L axes held along z by an orientational field of strength 10, then melted without it: for
+/// shapes whose lattice at the target density is jammed along one axis (wide boards stacked face
+/// to face), where melting the dense lattice leaves it ordered, and whose compression without the
+/// field arrests isotropic.
+inline State cached_compressed_lattice(const std::string& name, const Species& sp, std::size_t n, double eta_start,
+                                       double eta, std::int64_t melt_cycles) {
+  return cached_state(name, [&] {
+    State s = lattice_at(sp, n, eta_start);
+    McPhase compress;
+    compress.type = McPhase::Type::Compress;
+    compress.method = "quick";
+    compress.target_packing_fraction = eta;
+    compress.tune = true;
+    run_phases(s, name, {compress}, OrientationalField{10.0, 2, Vec3::UnitZ()});
+    run_phases(s, name, {nvt_phase(melt_cycles)});
     return s;
   });
 }
