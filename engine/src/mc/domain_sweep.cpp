@@ -73,7 +73,8 @@ void DomainSweep::gather(const State& state, Part& part) const {
   // different slabs are always apart. Copied: every body that reaches into the slab (a superset
   // of those a movable body can touch).
   const double margin = 1e-9 * L;
-  const Slab inner{part.slab.axis, part.slab.start + margin, part.slab.width - 2.0 * margin};
+  part.inner = Slab{part.slab.axis, part.slab.start + margin, part.slab.width - 2.0 * margin};
+  const Slab& inner = part.inner;
   const Slab outer{part.slab.axis, part.slab.start - margin, part.slab.width + 2.0 * margin};
   if (part.sub.species.size() != state.species.size()) part.sub.species = state.species;
   part.sub.box = state.box;
@@ -95,7 +96,9 @@ void DomainSweep::sweep(State& state, Part& part, std::uint64_t seed, std::int64
   if (part.overlap) part.overlap->rebuild(part.sub);
   else part.overlap.emplace(part.sub);
   Rng rng(seed, kSlabStream);
-  const TrialMove move{part.sub, *part.overlap, rng, part.counters, moves, field, removing_overlaps, &part.slab};
+  // Moves must keep a body movable by the same test that chose it: a move and its reverse then
+  // see the same movable set.
+  const TrialMove move{part.sub, *part.overlap, rng, part.counters, moves, field, removing_overlaps, &part.inner};
   const std::uint64_t n = part.movable.size();
   for (std::int64_t t = 0; t < trials; ++t) move.attempt(part.movable[rng.index(n)]);
   // Only movable particles changed; they belong to this slab alone.

@@ -37,7 +37,8 @@ class DomainSweep {
  private:
   /// A slab's own copy of the particles that reach into it.
   struct Part {
-    Slab slab;
+    Slab slab;   // the cut
+    Slab inner;  // the cut less a margin far above round-off: where movable bodies stay
     State sub;
     std::optional<HardOverlap> overlap;
     std::vector<std::int32_t> global;   // sub index → index in the full state

@@ -60,6 +60,7 @@ class SpeciesGrid {
 
  private:
   static constexpr int kMaxSpan = 16;
+  static constexpr int kDirectScan = 4;  // cells with at most this many particles skip the vector pass
   /// Cells along axis k within reach of a query with cut-off rc, its own included.
   int span(double rc, int k) const { return 2 * static_cast<int>(std::ceil(rc * inv_h_[k])) + 1; }
   /// Fallback of visit() when the reach wraps a whole axis (small boxes): every cell, minimum image.
@@ -163,6 +164,17 @@ template <class F>
   const int m = count_[cell];
   if (m == 0) return false;
   const std::size_t base = static_cast<std::size_t>(cell) * capacity_;
+  if (m <= kDirectScan && min_image_box == nullptr) {
+    // Few slots (dense spheres hold about one per cell): the buffered vector pass costs more than
+    // it saves. Same candidates, same order, same separations.
+    for (int s = 0; s < m; ++s) {
+      const std::size_t k = base + static_cast<std::size_t>(s);
+      const Vec3 d(sx_[k] - q.x(), sy_[k] - q.y(), sz_[k] - q.z());
+      const double d2 = d.x() * d.x() + d.y() * d.y() + d.z() * d.z();
+      if (d2 <= rc2 && f(sid_[k], d, d2)) return true;
+    }
+    return false;
+  }
   // The distances of a chunk of slots go to a buffer on the stack, so that visits from several
   // threads (a Verlet list built in parallel) share nothing.
   constexpr int kChunk = 32;
