@@ -27,6 +27,13 @@ void append_particle(Particles& to, const Particles& from, std::size_t i) {
   to.set_image(to.size() - 1, from.image(i));
 }
 
+template <class Parts>
+int first_active(const Parts& parts) {
+  for (std::size_t k = 0; k < parts.size(); ++k)
+    if (!parts[k].movable.empty()) return static_cast<int>(k);
+  return -1;
+}
+
 void clear_particles(Particles& p) {
   for (auto* v : {&p.x, &p.y, &p.z, &p.qw, &p.qx, &p.qy, &p.qz}) v->clear();
   for (auto* v : {&p.ix, &p.iy, &p.iz, &p.species}) v->clear();
@@ -54,13 +61,17 @@ void DomainSweep::cycle(State& state, Rng& rng, const MoveSizes& moves, const Or
 #pragma omp parallel for num_threads(slab_threads()) schedule(static, 1)
   for (int k = 0; k < kSlabs; ++k) gather(state, parts_[static_cast<std::size_t>(k)]);
 
-  std::size_t movable = 0;
-  for (const Part& part : parts_) movable += part.movable.size();
-  if (movable == 0) return;  // every particle straddles a cut: nothing moves this cycle
+  // The N trials are shared equally between the slabs that have movable bodies, so the threads
+  // finish together; the share does not depend on the configuration beyond which slabs can move,
+  // which no trial changes.
+  std::int64_t active = 0;
+  for (const Part& part : parts_) active += part.movable.empty() ? 0 : 1;
+  if (active == 0) return;  // every particle straddles a cut: nothing moves this cycle
+  const auto share = static_cast<std::int64_t>(n) / active, extra = static_cast<std::int64_t>(n) % active;
 #pragma omp parallel for num_threads(slab_threads()) schedule(static, 1)
   for (int k = 0; k < kSlabs; ++k) {
     Part& part = parts_[static_cast<std::size_t>(k)];
-    const auto trials = std::llround(static_cast<double>(part.movable.size()) * static_cast<double>(n) / static_cast<double>(movable));
+    const std::int64_t trials = part.movable.empty() ? 0 : share + (k == first_active(parts_) ? extra : 0);
     sweep(state, part, seeds[static_cast<std::size_t>(k)], trials, moves, field, removing_overlaps);
   }
   for (const Part& part : parts_) counters.add_particle_moves(part.counters);

@@ -8,7 +8,8 @@
 // Why this samples the hard-particle distribution: the cut (axis, offset) does not depend on the
 // configuration; within a slab, picking one of its n movable particles and a move that keeps it
 // inside is symmetric (a move and its reverse see the same n), so every trial obeys detailed
-// balance; and the number of trials, fixed by the movable counts, is unchanged by the trials.
+// balance; and the number of trials per slab (N shared equally between the slabs that have
+// movable bodies: balanced threads) is unchanged by the trials.
 // Random cuts let every particle move. Not for DMC, whose dynamics needs the sequential choice.
 //
 // The slab count is fixed and each slab draws from its own stream, seeded from the engine's
@@ -26,8 +27,8 @@ class DomainSweep {
  public:
   static constexpr int kSlabs = 2;
 
-  /// One cycle on `state`: about N trial moves, shared between the slabs in proportion to their
-  /// movable particles. Draws the cut and the slab seeds from `rng`; adds to `counters`.
+  /// One cycle on `state`: N trial moves, shared equally between the slabs that have movable
+  /// particles. Draws the cut and the slab seeds from `rng`; adds to `counters`.
   void cycle(State& state, Rng& rng, const MoveSizes& moves, const OrientationalField& field, bool removing_overlaps,
              MoveCounters& counters);
 
