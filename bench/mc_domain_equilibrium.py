@@ -37,10 +37,10 @@ def run(mc, state, pressure, sweeps, threads, cycles, tune, seed, workdir):
     cfg = os.path.join(workdir, f"{sweeps}.json")
     with open(cfg, "w") as f:
         json.dump(config, f)
-    env = dict(os.environ, OMP_NUM_THREADS=str(threads))
     t0 = time.perf_counter()
-    out = subprocess.run([mc, "--config", cfg, "--input", state, "--output", os.path.join(workdir, f"{sweeps}.h5")],
-                         check=True, capture_output=True, text=True, env=env).stdout
+    out = subprocess.run([mc, "--threads", str(threads), "--config", cfg, "--input", state,
+                          "--output", os.path.join(workdir, f"{sweeps}.h5")],
+                         check=True, capture_output=True, text=True).stdout
     wall = time.perf_counter() - t0
     return json.loads(out)["phases"][-1], wall
 

@@ -19,6 +19,7 @@
 using namespace anisodyn;
 using anisodyn::testing_support::lattice_of;
 using anisodyn::testing_support::on_thread_counts;
+using anisodyn::testing_support::ScopedThreadCount;
 
 namespace {
 
@@ -98,6 +99,9 @@ TEST(DomainSweep, TwoHardSpheresSampleTheExactSeparationLaw) {
   s.species.push_back(kSphere);
   s.particles.add(0, Vec3(1, 1, 1), Quat::Identity(), 0);
   s.particles.add(0, Vec3(3, 3, 3), Quat::Identity(), 1);
+  // One thread: the bits do not depend on the thread count (tested above), and two threads beside
+  // another test process spend these short cycles waiting for each other.
+  const ScopedThreadCount one_thread(1);
   McEngine mc(s, RngState{8, 0, 0, 4});
   mc.set_domain_sweeps(true);
   mc.move_sizes().translate[0] = 0.7;
@@ -122,6 +126,7 @@ TEST(DomainSweep, HardSpheresNptPackingFractionMatchesTheSequentialSweep) {
   // Under NPT the volume of a small system wanders slowly and one run's block errors can be far
   // too small, so each sweep runs from 16 seeds (fixed move sizes) and the error of the mean comes
   // from their spread.
+  const ScopedThreadCount one_thread(1);  // as above
   Rng rng(4, 0);
   const State start = lattice_of(kSphere, 216, 0.40, rng);
   auto mean_eta = [&](bool domains, std::uint64_t seed) {
