@@ -203,8 +203,13 @@ template <class F>
         r2[s] = dx * dx + dy * dy + dz * dz;
       }
     }
-    for (int s = 0; s < mm; ++s) {
-      if (r2[s] > rc2) continue;
+    // Hits as a bit mask, then visited in slot order: no branch per slot to mispredict (about one
+    // slot in ten is a hit for boards, whose cells are sized by their length).
+    std::uint32_t hits = 0;
+    for (int s = 0; s < mm; ++s) hits |= static_cast<std::uint32_t>(r2[s] <= rc2) << s;
+    while (hits != 0) {
+      const int s = __builtin_ctz(hits);
+      hits &= hits - 1;
       Vec3 d(px[s] - q.x(), py[s] - q.y(), pz[s] - q.z());
       if (min_image_box != nullptr) d = min_image_box->min_image(d);
       if (f(sid_[base + static_cast<std::size_t>(s0 + s)], d, r2[s])) return true;
