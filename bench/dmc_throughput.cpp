@@ -157,12 +157,12 @@ void BM_DmcMcSystems(benchmark::State& bs) {
     const Species board_a{"board", Shape::cuboid(1.0, 3.4641, 12.0), 1.0, Vec3(0.01447, 0.01676, 0.020117), Vec3(6.1655e-4, 5.5102e-4, 2.7965e-3)};
     const Species spheres{"hs", Shape::sphere(1.0), 1.0, Vec3::Constant(1.0 / (3.0 * M_PI)), Vec3::Zero()};
     const Species wide{"board", Shape::cuboid(1.0, 8.0, 12.0), 1.0, Vec3(9.4e-3, 1.4e-2, 1.5e-2), Vec3(3.5e-4, 3.6e-4, 6.3e-4)};
-    State s = k == 0   ? bench::cached_melted_lattice("cuboids_12x3.46x1_N2000_eta0.20", board_a, 2000, 0.20, 20000)
-              : k == 1 ? bench::cached_melted_lattice("spheres_N4000_eta0.40", spheres, 4000, 0.40, 3000)
-              : k == 2 ? bench::cached_melted_lattice("cuboids_12x1x1_N2000_eta0.34", kBoardW1, 2000, 0.34, 5000)
-                       : bench::cached_compressed_lattice("cuboids_12x8x1_N2000_eta0.34_compressed", wide, 2000, 0.05, 0.34, 5000);
-    // Whatever the cache holds (the MC benchmark may have written it), time with these tensors.
     const Species& sp = k == 0 ? board_a : k == 1 ? spheres : k == 2 ? kBoardW1 : wide;
+    State s = k == 0   ? bench::cached_melted_lattice("cuboids_12x3.46x1_N2000_eta0.20", sp, 2000, 0.20, 20000)
+              : k == 1 ? bench::cached_melted_lattice("spheres_N4000_eta0.40", sp, 4000, 0.40, 3000)
+              : k == 2 ? bench::cached_melted_lattice("cuboids_12x1x1_N2000_eta0.34", sp, 2000, 0.34, 5000)
+                       : bench::cached_compressed_lattice("cuboids_12x8x1_N2000_eta0.34_compressed", sp, 2000, 0.05, 0.34, 5000);
+    // Whatever the cache holds (the MC benchmark may have written it), time with these tensors.
     s.species[0].D_trans = sp.D_trans;
     s.species[0].D_rot = sp.D_rot;
     prepared.emplace(k, std::move(s));

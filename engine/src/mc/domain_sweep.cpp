@@ -68,11 +68,12 @@ void DomainSweep::cycle(State& state, Rng& rng, const MoveSizes& moves, const Or
   for (const Part& part : parts_) active += part.movable.empty() ? 0 : 1;
   if (active == 0) return;  // every particle straddles a cut: nothing moves this cycle
   const auto share = static_cast<std::int64_t>(n) / active, extra = static_cast<std::int64_t>(n) % active;
+  const int first = first_active(parts_);
 #pragma omp parallel for num_threads(slab_threads()) schedule(static, 1)
   for (int k = 0; k < kSlabs; ++k) {
     Part& part = parts_[static_cast<std::size_t>(k)];
-    const std::int64_t trials = part.movable.empty() ? 0 : share + (k == first_active(parts_) ? extra : 0);
-    sweep(state, part, seeds[static_cast<std::size_t>(k)], trials, moves, field, removing_overlaps);
+    if (part.movable.empty()) continue;  // nothing to move: no copy to index
+    sweep(state, part, seeds[static_cast<std::size_t>(k)], share + (k == first ? extra : 0), moves, field, removing_overlaps);
   }
   for (const Part& part : parts_) counters.add_particle_moves(part.counters);
 }
