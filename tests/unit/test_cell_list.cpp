@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 #include "anisodyn/core/rng.hpp"
@@ -60,7 +61,67 @@ void expect_same_sets(const Cloud& c, const CellList& cells, const std::vector<d
   }
 }
 
+/// As many moves of random particles as there are particles, each by up to `step` per axis.
+void move_at_random(Cloud& c, CellList& cells, double step, Rng& rng) {
+  for (std::size_t m = 0; m < c.x.size(); ++m) {
+    const std::size_t i = rng.index(c.x.size());
+    Vec3 r(c.x[i] + rng.uniform(-step, step), c.y[i] + rng.uniform(-step, step), c.z[i] + rng.uniform(-step, step));
+    Int3 image(0, 0, 0);
+    c.box.wrap(r, image);
+    c.x[i] = r.x(); c.y[i] = r.y(); c.z[i] = r.z();
+    cells.move(static_cast<std::int32_t>(i), r);
+  }
+}
+
+/// A filter that keeps separations inside a lab box of half-widths e: the grid may then skip cells
+/// that do not meet it, and must still find every kept particle once.
+struct KeepInsideBox {
+  Vec3 e;
+  bool operator()(double dx, double dy, double dz) const {
+    return std::abs(dx) <= e.x() && std::abs(dy) <= e.y() && std::abs(dz) <= e.z();
+  }
+  Vec3 extent(double rc) const { return e.cwiseMin(rc); }
+};
+
+void expect_filtered_sets(const Cloud& c, const CellList& cells, double rc, int queries, Rng& rng) {
+  const Vec3 L = c.box.edges();
+  for (int q = 0; q < queries; ++q) {
+    // Half the queries sit within a hair of a cell or box boundary, where rounding decides.
+    Vec3 r(rng.uniform() * L.x(), rng.uniform() * L.y(), rng.uniform() * L.z());
+    if (q % 2 == 0) {
+      const int k = static_cast<int>(rng.index(3));
+      r[k] = rng.uniform() < 0.5 ? 1e-13 : std::nextafter(L[k], 0.0);
+    }
+    const KeepInsideBox keep{Vec3(rng.uniform(0.05, 1.2), rng.uniform(0.05, 1.2), rng.uniform(0.05, 1.2)) * rc};
+    std::set<int> found, expected;
+    cells.visit(0, r, rc, [&](int j, const Vec3& d, double) {
+      EXPECT_TRUE(keep(d.x(), d.y(), d.z()));
+      EXPECT_TRUE(found.insert(j).second) << "visited twice: " << j;
+      return false;
+    }, keep);
+    for (int j : brute_force(c, r, 0, rc, -1)) {
+      const Vec3 d = c.box.min_image(Vec3(c.x[static_cast<std::size_t>(j)], c.y[static_cast<std::size_t>(j)], c.z[static_cast<std::size_t>(j)]) - r);
+      if (keep(d.x(), d.y(), d.z())) expected.insert(j);
+    }
+    ASSERT_EQ(found, expected) << "query " << q;
+  }
+}
+
 }  // namespace
+
+TEST(CellList, FilterWithShortExtentFindsEveryKeptParticle) {
+  Rng rng(11, 4);
+  // Sparse cells (the short pass over slots that may be empty) and full ones (the vector pass),
+  // before and after moves that leave emptied slots behind.
+  for (std::size_t n : {300, 6000}) {
+    Cloud c = random_cloud(rng, Vec3(12, 15, 20), {n});
+    CellList cells;
+    cells.build(c.box, c.x, c.y, c.z, c.species, {2.0});
+    expect_filtered_sets(c, cells, 2.0, 300, rng);
+    move_at_random(c, cells, 2.0, rng);
+    expect_filtered_sets(c, cells, 2.0, 300, rng);
+  }
+}
 
 TEST(CellList, MixtureOfTinySpheresAndLargeBoards) {
   // 12×8×1 boards (circumradius 7.23) with spheres of diameter 0.1, as in the tracer study.
@@ -88,14 +149,7 @@ TEST(CellList, ElongatedBoxAndIncrementalMoves) {
   const Int3 n = cells.grid(0).cells_per_axis();
   EXPECT_NEAR(double(n.z()) / n.x(), 3.0, 0.5);
   for (int sweep = 0; sweep < 5; ++sweep) {
-    for (std::size_t m = 0; m < c.x.size(); ++m) {
-      const std::size_t i = rng.index(c.x.size());
-      Vec3 r(c.x[i] + rng.uniform(-3, 3), c.y[i] + rng.uniform(-3, 3), c.z[i] + rng.uniform(-3, 3));
-      Int3 image(0, 0, 0);
-      c.box.wrap(r, image);
-      c.x[i] = r.x(); c.y[i] = r.y(); c.z[i] = r.z();
-      cells.move(static_cast<std::int32_t>(i), r);
-    }
+    move_at_random(c, cells, 3.0, rng);
     expect_same_sets(c, cells, pair, 2, 200, rng);
   }
 }

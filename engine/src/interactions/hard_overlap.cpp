@@ -126,39 +126,63 @@ void HardOverlap::inserted(std::int32_t i) {
 }
 
 namespace {
-/// Calls test(kernel) with the overlap kernel for bodies of shapes (sa, rot) and sb: kernel(j, d, r2)
-/// says whether sa at the origin overlaps body j of shape sb at d. The common pairs get their
-/// kernel inlined into the candidate loop; every other registered pair uses the generic dispatch.
+/// The grid's vectorised candidate filter for a cuboid query: keeps partners whose centre lies
+/// within `reach` of the cuboid (rotation rot, half-extents h, at the origin), i.e. whose
+/// bounding sphere of that radius meets it. The same OCSI distance the kernels compute.
+struct NearCuboid {
+  const Mat3& rot;
+  Vec3 half;
+  double reach2;
+  [[gnu::always_inline]] bool operator()(double dx, double dy, double dz) const {
+    const double d[3] = {dx, dy, dz};
+    return cuboid_sphere_dmin2(rot.data(), half.data(), d) <= reach2;
+  }
+  /// Kept centres lie within the cuboid's lab box grown by the reach.
+  Vec3 extent(double rc) const {
+    const Vec3 lab = rot.cwiseAbs() * half;
+    return (lab + Vec3::Constant(std::sqrt(reach2))).cwiseMin(rc);
+  }
+};
+
+/// Calls test(kernel, keep) with the overlap test for bodies of shapes (sa, rot) and sb, split in
+/// two: keep(dx, dy, dz), a necessary condition on the separation alone, which the grid evaluates
+/// in its vectorised distance pass, and kernel(j, d, r2), which decides the candidates keep passes
+/// (sa at the origin against body j of shape sb at d). The common pairs get their kernel inlined
+/// into the candidate loop; every other registered pair uses the generic dispatch.
 template <class Test>
 bool with_pair_kernel(const Shape& sa, const Mat3& rot, const Shape& sb, const std::vector<Mat3>& rotations, Test&& test) {
   auto rotation_of = [&](std::int32_t j) -> const Mat3& { return rotations[static_cast<std::size_t>(j)]; };
   if (sa.kind == ShapeKind::Sphere && sb.kind == ShapeKind::Sphere) {
     // The cut-off is the contact distance and candidates have r² ≤ rc²: every candidate overlaps.
-    return test([](std::int32_t, const Vec3&, double) { return true; });
+    return test([](std::int32_t, const Vec3&, double) { return true; }, KeepAll{});
   }
   if (sa.kind == ShapeKind::Cuboid && sb.kind == ShapeKind::Cuboid) {
     const Vec3 ha = sa.half_extents(), hb = sb.half_extents();
-    // Cheap exclusion before the 15-axis test: B lies inside its circumsphere, so if B's centre
-    // is farther from box A than B's circumradius they cannot touch (and vice versa). Each check
-    // is one OCSI distance (9 multiply-adds); the margin keeps round-off from excluding contact.
+    // Cheap exclusions before the 15-axis test: B lies inside its circumsphere, so if B's centre
+    // is farther from box A than B's circumradius they cannot touch (keep), and vice versa (the
+    // kernel's first check). Each is one OCSI distance; the margin keeps round-off from excluding
+    // contact.
     const double ra2 = (1.0 + 1e-12) * ha.squaredNorm(), rb2 = (1.0 + 1e-12) * hb.squaredNorm();
-    return test([&](std::int32_t j, const Vec3& d, double) {
-      const Mat3& rj = rotation_of(j);
-      if (cuboid_sphere_dmin2(rot, ha, d) > rb2 || cuboid_sphere_dmin2(rj, hb, Vec3(-d)) > ra2) return false;
-      return overlap_cuboid_cuboid(ha, rot, hb, rj, d);
-    });
+    return test(
+        [&](std::int32_t j, const Vec3& d, double) {
+          const Mat3& rj = rotation_of(j);
+          if (cuboid_sphere_dmin2(rj, hb, Vec3(-d)) > ra2) return false;
+          return overlap_cuboid_cuboid(ha, rot, hb, rj, d);
+        },
+        NearCuboid{rot, ha, rb2});
   }
   if (sa.kind == ShapeKind::Cuboid && sb.kind == ShapeKind::Sphere) {
-    const Vec3 ha = sa.half_extents();
+    // keep is the whole OCSI test: the sphere's centre within its radius of the cuboid.
     const double rb = 0.5 * sb.diameter;
-    return test([&](std::int32_t, const Vec3& d, double) { return overlap_cuboid_sphere(rot, ha, d, rb); });
+    return test([](std::int32_t, const Vec3&, double) { return true; }, NearCuboid{rot, sa.half_extents(), rb * rb});
   }
   if (sa.kind == ShapeKind::Sphere && sb.kind == ShapeKind::Cuboid) {
     const Vec3 hb = sb.half_extents();
     const double ra = 0.5 * sa.diameter;
-    return test([&](std::int32_t j, const Vec3& d, double) { return overlap_cuboid_sphere(rotation_of(j), hb, Vec3(-d), ra); });
+    return test([&](std::int32_t j, const Vec3& d, double) { return overlap_cuboid_sphere(rotation_of(j), hb, Vec3(-d), ra); },
+                KeepAll{});
   }
-  return test([&](std::int32_t j, const Vec3& d, double) { return overlap(sa, rot, sb, rotation_of(j), d); });
+  return test([&](std::int32_t j, const Vec3& d, double) { return overlap(sa, rot, sb, rotation_of(j), d); }, KeepAll{});
 }
 }  // namespace
 
@@ -172,13 +196,15 @@ bool HardOverlap::for_each_overlap(std::int32_t i, const Vec3& r, const Mat3& ro
   for (int b = 0; b < nspecies_; ++b) {
     const Shape& sb = species[static_cast<std::size_t>(b)].shape;
     const double rc = cutoff(a, b);
-    auto test = [&](auto&& kernel) {
+    auto test = [&](auto&& kernel, const auto& keep) {
       auto candidate = [&](std::int32_t j, const Vec3& d, double r2) {
         return j != i && j >= first_j && kernel(j, d, r2) && on_overlap(j);
       };
-      if (use_list && skin_.pair_listed(a, b)) return visit_listed(i, b, r, rc, candidate);
-      if (uses_tree(a, b)) return visit_tree(a, b, r, rot, rc, candidate);
-      return cells_.visit(b, r, rc, candidate);
+      // The grid applies keep in its distance pass; the other searches apply it here.
+      auto kept = [&](std::int32_t j, const Vec3& d, double r2) { return keep(d.x(), d.y(), d.z()) && candidate(j, d, r2); };
+      if (use_list && skin_.pair_listed(a, b)) return visit_listed(i, b, r, rc, kept);
+      if (uses_tree(a, b)) return visit_tree(a, b, r, rot, rc, kept);
+      return cells_.visit(b, r, rc, candidate, keep);
     };
     if (with_pair_kernel(sa, rot, sb, rot_, test)) return true;
   }

@@ -1,5 +1,6 @@
 #include "anisodyn/neighbors/cell_list.hpp"
 
+#include <limits>
 #include <memory>
 
 namespace anisodyn {
@@ -8,6 +9,9 @@ namespace {
 // Cells per particle above which a grid stops refining: beyond it most cells are empty and
 // queries with long reach pay for visiting them.
 constexpr double kMaxCellsPerParticle = 2.0;
+// Position of an empty slot: NaN fails every distance comparison, so short cells can be scanned
+// without reading their count.
+constexpr double kEmptySlot = std::numeric_limits<double>::quiet_NaN();
 }  // namespace
 
 const std::vector<StencilCell>& stencil_order(int sx, int sy, int sz) {
@@ -52,16 +56,14 @@ void SpeciesGrid::configure(const Box& box, double self_cutoff, std::size_t coun
     inv_h_[k] = 1.0 / h_[k];
   }
   const double mean_occupancy = static_cast<double>(count) / n_.cast<double>().prod();
-  capacity_ = std::max<std::size_t>(8, static_cast<std::size_t>(std::ceil(3.0 * mean_occupancy)));
+  capacity_ = std::max<std::size_t>(4, static_cast<std::size_t>(std::ceil(3.0 * mean_occupancy)));
   clear();
 }
 
 void SpeciesGrid::clear() {
   const std::size_t cells = static_cast<std::size_t>(n_.prod());
   count_.assign(cells, 0);
-  sx_.assign(cells * capacity_, 0.0);
-  sy_.assign(cells * capacity_, 0.0);
-  sz_.assign(cells * capacity_, 0.0);
+  pos_.assign(3 * cells * capacity_, kEmptySlot);
   sid_.assign(cells * capacity_, -1);
 }
 
@@ -74,9 +76,8 @@ int SpeciesGrid::cell_of(const Vec3& r) const {
 void SpeciesGrid::place(std::int32_t particle, int cell, const Vec3& r) {
   if (static_cast<std::size_t>(count_[cell]) == capacity_) grow_capacity();
   const std::size_t slot = static_cast<std::size_t>(count_[cell]++);
-  const std::size_t at = static_cast<std::size_t>(cell) * capacity_ + slot;
-  sx_[at] = r.x(); sy_[at] = r.y(); sz_[at] = r.z();
-  sid_[at] = particle;
+  store(x_index(cell, slot), r);
+  sid_[static_cast<std::size_t>(cell) * capacity_ + slot] = particle;
   if (cell_.size() <= static_cast<std::size_t>(particle)) {
     cell_.resize(static_cast<std::size_t>(particle) + 1, -1);
     slot_.resize(static_cast<std::size_t>(particle) + 1, -1);
@@ -93,20 +94,19 @@ void SpeciesGrid::remove(std::int32_t particle) {
   const std::size_t slot = static_cast<std::size_t>(slot_[particle]);
   const std::size_t last = static_cast<std::size_t>(--count_[cell]);
   if (slot != last) {  // fill the hole with the cell's last entry
-    sx_[base + slot] = sx_[base + last];
-    sy_[base + slot] = sy_[base + last];
-    sz_[base + slot] = sz_[base + last];
+    const std::size_t to = x_index(cell, slot), from = x_index(cell, last);
+    for (std::size_t axis = 0; axis < 3; ++axis) pos_[to + axis * capacity_] = pos_[from + axis * capacity_];
     sid_[base + slot] = sid_[base + last];
     slot_[sid_[base + slot]] = static_cast<std::int32_t>(slot);
   }
+  store(x_index(cell, last), Vec3::Constant(kEmptySlot));
   cell_[particle] = -1;
 }
 
 void SpeciesGrid::move(std::int32_t particle, const Vec3& r) {
   const int cell = cell_of(r);
   if (cell == cell_[particle]) {
-    const std::size_t at = static_cast<std::size_t>(cell) * capacity_ + static_cast<std::size_t>(slot_[particle]);
-    sx_[at] = r.x(); sy_[at] = r.y(); sz_[at] = r.z();
+    store(x_index(cell, static_cast<std::size_t>(slot_[particle])), r);
     return;
   }
   remove(particle);
@@ -115,16 +115,17 @@ void SpeciesGrid::move(std::int32_t particle, const Vec3& r) {
 
 void SpeciesGrid::grow_capacity() {
   const std::size_t old_cap = capacity_, cells = count_.size();
+  std::vector<double> old_pos(3 * cells * 2 * old_cap, kEmptySlot);
+  std::vector<std::int32_t> old_id(cells * 2 * old_cap, -1);
+  pos_.swap(old_pos);
+  sid_.swap(old_id);
   capacity_ *= 2;
-  std::vector<double> nx(cells * capacity_), ny(cells * capacity_), nz(cells * capacity_);
-  std::vector<std::int32_t> nid(cells * capacity_, -1);
-  for (std::size_t c = 0; c < cells; ++c) {
-    for (int s = 0; s < count_[c]; ++s) {
-      const std::size_t from = c * old_cap + static_cast<std::size_t>(s), to = c * capacity_ + static_cast<std::size_t>(s);
-      nx[to] = sx_[from]; ny[to] = sy_[from]; nz[to] = sz_[from]; nid[to] = sid_[from];
+  for (std::size_t c = 0; c < cells; ++c)
+    for (std::size_t s = 0; s < static_cast<std::size_t>(count_[c]); ++s) {
+      const std::size_t from = 3 * c * old_cap + s;
+      store(x_index(static_cast<int>(c), s), Vec3(old_pos[from], old_pos[from + old_cap], old_pos[from + 2 * old_cap]));
+      sid_[c * capacity_ + s] = old_id[c * old_cap + s];
     }
-  }
-  sx_.swap(nx); sy_.swap(ny); sz_.swap(nz); sid_.swap(nid);
 }
 
 void CellList::build(const Box& box, const std::vector<double>& x, const std::vector<double>& y,
