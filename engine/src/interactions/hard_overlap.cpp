@@ -91,27 +91,31 @@ Vec3 HardOverlap::bounding_half_extents(int a, const Mat3& rot) const {
 
 void HardOverlap::build_trees() {
   const auto ns = static_cast<std::size_t>(nspecies_);
-  trees_.assign(ns, AabbTree());
+  trees_.resize(ns);  // a build reuses a tree's memory (domain sweeps rebuild every cycle)
   moves_since_build_.assign(ns, 0);
   tree_needed_.assign(ns, 0);
   for (int a = 0; a < nspecies_; ++a)
     for (int b = 0; b < nspecies_; ++b)
       if (uses_tree(a, b)) tree_needed_[static_cast<std::size_t>(b)] = 1;
-  for (int b = 0; b < nspecies_; ++b)
+  for (int b = 0; b < nspecies_; ++b) {
     if (tree_needed(b)) rebuild_tree(b);
+    else trees_[static_cast<std::size_t>(b)].clear();
+  }
 }
 
 void HardOverlap::rebuild_tree(int b) {
   const Particles& p = state_->particles;
-  std::vector<std::int32_t> members;
-  std::vector<Vec3> centres(p.size()), half(p.size());
+  // Scratch kept between rebuilds: domain sweeps rebuild every cycle.
+  tree_members_.clear();
+  tree_centres_.resize(p.size());
+  tree_halves_.resize(p.size());
   for (std::size_t ui = 0; ui < p.size(); ++ui) {
     if (p.species[ui] != b) continue;
-    members.push_back(static_cast<std::int32_t>(ui));
-    centres[ui] = p.position(ui);
-    half[ui] = bounding_half_extents(b, rot_[ui]);
+    tree_members_.push_back(static_cast<std::int32_t>(ui));
+    tree_centres_[ui] = p.position(ui);
+    tree_halves_[ui] = bounding_half_extents(b, rot_[ui]);
   }
-  trees_[static_cast<std::size_t>(b)].build(state_->box, members, centres, half);
+  trees_[static_cast<std::size_t>(b)].build(state_->box, tree_members_, tree_centres_, tree_halves_);
   moves_since_build_[static_cast<std::size_t>(b)] = 0;
 }
 

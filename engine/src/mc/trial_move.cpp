@@ -14,26 +14,21 @@ void MoveCounters::reset(std::size_t nspecies) {
   volume_tried = volume_accepted = 0;
 }
 
+void MoveCounters::add_particle_moves(const MoveCounters& other, std::int64_t sign) {
+  for (std::size_t s = 0; s < translate_tried.size(); ++s) {
+    translate_tried[s] += sign * other.translate_tried[s];
+    translate_accepted[s] += sign * other.translate_accepted[s];
+    rotate_tried[s] += sign * other.rotate_tried[s];
+    rotate_accepted[s] += sign * other.rotate_accepted[s];
+  }
+}
+
 MoveCounters MoveCounters::since(const MoveCounters& earlier) const {
   MoveCounters d = *this;
-  for (std::size_t s = 0; s < d.translate_tried.size(); ++s) {
-    d.translate_tried[s] -= earlier.translate_tried[s];
-    d.translate_accepted[s] -= earlier.translate_accepted[s];
-    d.rotate_tried[s] -= earlier.rotate_tried[s];
-    d.rotate_accepted[s] -= earlier.rotate_accepted[s];
-  }
+  d.add_particle_moves(earlier, -1);
   d.volume_tried -= earlier.volume_tried;
   d.volume_accepted -= earlier.volume_accepted;
   return d;
-}
-
-void MoveCounters::add_particle_moves(const MoveCounters& other) {
-  for (std::size_t s = 0; s < translate_tried.size(); ++s) {
-    translate_tried[s] += other.translate_tried[s];
-    translate_accepted[s] += other.translate_accepted[s];
-    rotate_tried[s] += other.rotate_tried[s];
-    rotate_accepted[s] += other.rotate_accepted[s];
-  }
 }
 
 void TrialMove::attempt(std::int32_t i) const {

@@ -51,19 +51,21 @@ void AabbTree::build_unchecked(std::vector<std::int32_t> particles, const std::v
   const std::int32_t max_id = *std::max_element(particles.begin(), particles.end());
   leaf_of_.assign(static_cast<std::size_t>(max_id) + 1, -1);
   slot_of_.assign(static_cast<std::size_t>(max_id) + 1, -1);
+  std::vector<BuildEntry> entries;
+  entries.reserve(particles.size());
+  for (const std::int32_t p : particles)
+    entries.push_back({centres[static_cast<std::size_t>(p)], half_extents[static_cast<std::size_t>(p)], p});
   nodes_.reserve(particles.size() / 2 + 1);
   nodes_.emplace_back();
-  build_node(particles.data(), particles.data() + particles.size(), 0, centres, half_extents);
+  build_node(entries.data(), entries.data() + entries.size(), 0);
   size_ = size_at_build_ = particles.size();
 }
 
-void AabbTree::build_node(std::int32_t* first, std::int32_t* last, std::int32_t node, const std::vector<Vec3>& centres,
-                          const std::vector<Vec3>& half_extents) {
+void AabbTree::build_node(BuildEntry* first, BuildEntry* last, std::int32_t node) {
   const auto n = last - first;
   if (n <= kLeafCapacity) {
     const std::int32_t leaf = new_leaf(node);
-    for (int s = 0; s < n; ++s)
-      put(leaf, s, first[s], centres[static_cast<std::size_t>(first[s])], half_extents[static_cast<std::size_t>(first[s])]);
+    for (int s = 0; s < n; ++s) put(leaf, s, first[s].id, first[s].centre, first[s].half);
     count_[static_cast<std::size_t>(leaf)] = static_cast<std::int32_t>(n);
     refit(node);
     return;
@@ -74,27 +76,23 @@ void AabbTree::build_node(std::int32_t* first, std::int32_t* last, std::int32_t 
   // node of nematic rods across their length would barely shrink them.
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   Vec3 box_lo = lo, box_hi = hi;
-  for (auto* p = first; p != last; ++p) {
-    const Vec3& c = centres[static_cast<std::size_t>(*p)];
-    const Vec3& h = half_extents[static_cast<std::size_t>(*p)];
-    lo = lo.cwiseMin(c);
-    hi = hi.cwiseMax(c);
-    box_lo = box_lo.cwiseMin(c - h);
-    box_hi = box_hi.cwiseMax(c + h);
+  for (auto* e = first; e != last; ++e) {
+    lo = lo.cwiseMin(e->centre);
+    hi = hi.cwiseMax(e->centre);
+    box_lo = box_lo.cwiseMin(e->centre - e->half);
+    box_hi = box_hi.cwiseMax(e->centre + e->half);
   }
   int axis = 0;
   (hi - lo).cwiseQuotient((box_hi - box_lo).cwiseMax(1e-300)).maxCoeff(&axis);
-  std::int32_t* mid = first + n / 2;
-  std::nth_element(first, mid, last, [&](std::int32_t a, std::int32_t b) {
-    return centres[static_cast<std::size_t>(a)][axis] < centres[static_cast<std::size_t>(b)][axis];
-  });
+  BuildEntry* mid = first + n / 2;
+  std::nth_element(first, mid, last, [axis](const BuildEntry& a, const BuildEntry& b) { return a.centre[axis] < b.centre[axis]; });
   const auto child = static_cast<std::int32_t>(nodes_.size());
   nodes_.emplace_back();
   nodes_.emplace_back();
   nodes_[static_cast<std::size_t>(node)].child = child;
   nodes_[static_cast<std::size_t>(child)].parent = nodes_[static_cast<std::size_t>(child) + 1].parent = node;
-  build_node(first, mid, child, centres, half_extents);
-  build_node(mid, last, child + 1, centres, half_extents);
+  build_node(first, mid, child);
+  build_node(mid, last, child + 1);
   refit(node);
 }
 

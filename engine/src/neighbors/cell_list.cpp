@@ -65,6 +65,8 @@ void SpeciesGrid::clear() {
   count_.assign(cells, 0);
   pos_.assign(3 * cells * capacity_, kEmptySlot);
   sid_.assign(cells * capacity_, -1);
+  cell_.assign(cell_.size(), -1);  // assign keeps the memory: domain sweeps rebuild every cycle
+  slot_.assign(slot_.size(), -1);
 }
 
 int SpeciesGrid::cell_of(const Vec3& r) const {
@@ -133,7 +135,7 @@ void CellList::build(const Box& box, const std::vector<double>& x, const std::ve
                      const std::vector<double>& self_cutoffs, const std::vector<std::size_t>& expected_counts) {
   box_ = box;
   species_ = species;
-  grids_.assign(self_cutoffs.size(), SpeciesGrid());
+  grids_.resize(self_cutoffs.size());  // configure() resets each grid, reusing its memory
   std::vector<std::size_t> counts(self_cutoffs.size(), 0);
   for (auto s : species) counts[static_cast<std::size_t>(s)]++;
   for (std::size_t s = 0; s < expected_counts.size() && s < counts.size(); ++s) counts[s] = std::max(counts[s], expected_counts[s]);

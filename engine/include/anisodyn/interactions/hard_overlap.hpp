@@ -114,6 +114,8 @@ class HardOverlap {
   std::vector<char> tree_needed_;            // per species: some pair searches its tree
   std::vector<AabbTree> trees_;              // per species (empty unless needed)
   std::vector<std::size_t> moves_since_build_;  // per species with a tree
+  std::vector<std::int32_t> tree_members_;      // rebuild_tree's scratch
+  std::vector<Vec3> tree_centres_, tree_halves_;
 };
 
 }  // namespace anisodyn

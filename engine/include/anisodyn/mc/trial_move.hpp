@@ -28,8 +28,8 @@ struct MoveCounters {
   void reset(std::size_t nspecies);
   /// Counts accumulated since `earlier` (a copy taken before).
   MoveCounters since(const MoveCounters& earlier) const;
-  /// Adds the particle-move counts of `other` (same species count).
-  void add_particle_moves(const MoveCounters& other);
+  /// Adds sign × the particle-move counts of `other` (same species count).
+  void add_particle_moves(const MoveCounters& other, std::int64_t sign = 1);
   static double ratio(std::int64_t accepted, std::int64_t tried) {
     return tried > 0 ? static_cast<double>(accepted) / static_cast<double>(tried) : 0.0;
   }

@@ -83,8 +83,13 @@ class AabbTree {
   /// build() without the check of the inputs (also used to rebuild on insert).
   void build_unchecked(std::vector<std::int32_t> particles, const std::vector<Vec3>& centres,
                        const std::vector<Vec3>& half_extents);
-  void build_node(std::int32_t* first, std::int32_t* last, std::int32_t node, const std::vector<Vec3>& centres,
-                  const std::vector<Vec3>& half_extents);
+  /// A particle as the build sees it: contiguous, so that the per-node bounds and the median
+  /// split read sequential memory instead of gathering through the particle index.
+  struct BuildEntry {
+    Vec3 centre, half;
+    std::int32_t id;
+  };
+  void build_node(BuildEntry* first, BuildEntry* last, std::int32_t node);
   std::int32_t new_leaf(std::int32_t node);
   void put(std::int32_t leaf, int slot, std::int32_t particle, const Vec3& r, const Vec3& h);
   void clear_slot(std::int32_t leaf, int slot);

@@ -9,7 +9,9 @@
 // that grid it needs. Every box edge may have its own cell count, so elongated boxes are fine.
 //
 // Each cell keeps copies of its particles' positions in fixed-capacity slots, so the candidate
-// loop reads contiguous memory and vectorises. Positions are wrapped into [0, L).
+// loop reads contiguous memory and vectorises. Positions are wrapped into [0, L). A query may bring
+// a shape-specific filter on the separation (HardOverlap's cuboid reach test), which that loop
+// evaluates too, and whose lab extent prunes the cells visited.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
