@@ -162,18 +162,15 @@ bool with_pair_kernel(const Shape& sa, const Mat3& rot, const Shape& sb, const s
   }
   if (sa.kind == ShapeKind::Cuboid && sb.kind == ShapeKind::Cuboid) {
     const Vec3 ha = sa.half_extents(), hb = sb.half_extents();
-    // Cheap exclusions before the 15-axis test: B lies inside its circumsphere, so if B's centre
-    // is farther from box A than B's circumradius they cannot touch (keep), and vice versa (the
-    // kernel's first check). Each is one OCSI distance; the margin keeps round-off from excluding
-    // contact.
-    const double ra2 = (1.0 + 1e-12) * ha.squaredNorm(), rb2 = (1.0 + 1e-12) * hb.squaredNorm();
-    return test(
-        [&](std::int32_t j, const Vec3& d, double) {
-          const Mat3& rj = rotation_of(j);
-          if (cuboid_sphere_dmin2(rj, hb, Vec3(-d)) > ra2) return false;
-          return overlap_cuboid_cuboid(ha, rot, hb, rj, d);
-        },
-        NearCuboid{rot, ha, rb2});
+    // Cheap exclusion before the 15-axis test: B lies inside its circumsphere, so if B's centre
+    // is farther from box A than B's circumradius they cannot touch (keep: one OCSI distance; the
+    // margin keeps round-off from excluding contact). The mirror check (A's centre against box B)
+    // is left to the 15-axis test: it removed 30% of the pairs keep passes on (a), but loading
+    // B's rotation and a mispredicted branch cost more than the tests it saved (2.5–5% fewer
+    // trials per second on (a), (c) and (d), alternating runs).
+    const double rb2 = (1.0 + 1e-12) * hb.squaredNorm();
+    return test([&](std::int32_t j, const Vec3& d, double) { return overlap_cuboid_cuboid(ha, rot, hb, rotation_of(j), d); },
+                NearCuboid{rot, ha, rb2});
   }
   if (sa.kind == ShapeKind::Cuboid && sb.kind == ShapeKind::Sphere) {
     // keep is the whole OCSI test: the sphere's centre within its radius of the cuboid.
