@@ -2,6 +2,7 @@
 
 #include <limits>
 #include <memory>
+#include <utility>
 
 namespace anisodyn {
 
@@ -96,8 +97,7 @@ void SpeciesGrid::remove(std::int32_t particle) {
   const std::size_t slot = static_cast<std::size_t>(slot_[particle]);
   const std::size_t last = static_cast<std::size_t>(--count_[cell]);
   if (slot != last) {  // fill the hole with the cell's last entry
-    const std::size_t to = x_index(cell, slot), from = x_index(cell, last);
-    for (std::size_t axis = 0; axis < 3; ++axis) pos_[to + axis * capacity_] = pos_[from + axis * capacity_];
+    store(x_index(cell, slot), stored(x_index(cell, last)));
     sid_[base + slot] = sid_[base + last];
     slot_[sid_[base + slot]] = static_cast<std::int32_t>(slot);
   }
@@ -117,11 +117,11 @@ void SpeciesGrid::move(std::int32_t particle, const Vec3& r) {
 
 void SpeciesGrid::grow_capacity() {
   const std::size_t old_cap = capacity_, cells = count_.size();
-  std::vector<double> old_pos(3 * cells * 2 * old_cap, kEmptySlot);
-  std::vector<std::int32_t> old_id(cells * 2 * old_cap, -1);
-  pos_.swap(old_pos);
-  sid_.swap(old_id);
+  const std::vector<double> old_pos = std::move(pos_);
+  const std::vector<std::int32_t> old_id = std::move(sid_);
   capacity_ *= 2;
+  pos_.assign(3 * cells * capacity_, kEmptySlot);
+  sid_.assign(cells * capacity_, -1);
   for (std::size_t c = 0; c < cells; ++c)
     for (std::size_t s = 0; s < static_cast<std::size_t>(count_[c]); ++s) {
       const std::size_t from = 3 * c * old_cap + s;

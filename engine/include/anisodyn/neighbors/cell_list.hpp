@@ -85,8 +85,6 @@ class SpeciesGrid {
   /// Fallback of visit() when the reach wraps a whole axis (small boxes): every cell, minimum image.
   template <class F, class Keep>
   bool visit_all_cells(const Box& box, const Vec3& r, double rc, F&& f, const Keep& keep) const;
-  /// Calls f for the particles of one cell within √rc2 of q: separations p − q as they stand, or
-  /// minimum-imaged in min_image_box when it is given.
   /// r2[s] = |p_s − q|² for the n slots at (px, py, pz), or kDropped where keep rejects p_s − q.
   template <class Keep>
   [[gnu::always_inline]] static void distance_pass(const double* px, const double* py, const double* pz, int n, const Vec3& q,
@@ -99,6 +97,8 @@ class SpeciesGrid {
                                                 const Box* min_image_box, F& f);
   /// r² of a slot the candidate filter drops: fails every cut-off test.
   static constexpr double kDropped = std::numeric_limits<double>::infinity();
+  /// Calls f for the particles of one cell within √rc2 of q that keep passes: separations p − q
+  /// as they stand, or minimum-imaged in min_image_box when it is given.
   template <class F, class Keep>
   [[gnu::always_inline]] bool scan_cell(int cell, const Vec3& q, double rc2, const Box* min_image_box, F& f, const Keep& keep) const;
 
@@ -109,6 +109,7 @@ class SpeciesGrid {
   int cell_of(const Vec3& r) const;
   /// Index in pos_ of the x value of a cell's slot (y: + capacity_, z: + 2 capacity_).
   std::size_t x_index(int cell, std::size_t slot) const { return 3 * static_cast<std::size_t>(cell) * capacity_ + slot; }
+  Vec3 stored(std::size_t x) const { return Vec3(pos_[x], pos_[x + capacity_], pos_[x + 2 * capacity_]); }
   void store(std::size_t x, const Vec3& r) {
     pos_[x] = r.x();
     pos_[x + capacity_] = r.y();
