@@ -13,6 +13,7 @@
 #include <benchmark/benchmark.h>
 
 #include <map>
+#include <optional>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -30,9 +31,13 @@ struct Prepared {
   MoveSizes moves;
 };
 
-/// Move sizes tuned to 35% acceptance on the prepared state (not timed).
-Prepared tuned(Prepared p) {
+/// Move sizes tuned to 35% acceptance on the prepared state, which the tuning cycles advance (not
+/// timed). Given a pressure, the tuning runs NPT from the moves already tuned, so that the volume
+/// move is tuned too.
+Prepared tuned(Prepared p, std::optional<double> beta_pressure = std::nullopt) {
   McEngine mc(p.state, RngState{7, 0, 0, 4});
+  if (beta_pressure) mc.move_sizes() = p.moves;
+  mc.set_pressure(beta_pressure);
   for (int round = 0; round < 30; ++round) {
     const MoveCounters mark = mc.counters();
     for (int c = 0; c < 20; ++c) mc.cycle();
@@ -56,11 +61,13 @@ std::int64_t particle_trials(const MoveCounters& w) {
 
 /// Trial moves per second of MC cycles on a copy of the prepared state, sequential or by domain
 /// sweeps (mc/domain_sweep.hpp).
-void run_cycles(benchmark::State& bs, const Prepared& prepared, bool domains = false) {
+void run_cycles(benchmark::State& bs, const Prepared& prepared, bool domains = false,
+                std::optional<double> beta_pressure = std::nullopt) {
   State state = prepared.state;
   McEngine mc(state, RngState{11, 0, 0, 4});
   mc.move_sizes() = prepared.moves;
   mc.set_domain_sweeps(domains);
+  mc.set_pressure(beta_pressure);
   const MoveCounters start = mc.counters();
   for (auto _ : bs) mc.cycle();
   const MoveCounters w = mc.counters().since(start);
@@ -69,6 +76,7 @@ void run_cycles(benchmark::State& bs, const Prepared& prepared, bool domains = f
   bs.counters["trials_per_s"] = benchmark::Counter(static_cast<double>(particle_trials(w)), benchmark::Counter::kIsRate);
   bs.counters["acceptance"] = acc;
   bs.counters["eta"] = state.packing_fraction();
+  if (beta_pressure) bs.counters["volume_acceptance"] = MoveCounters::ratio(w.volume_accepted, w.volume_tried);
 }
 
 const Prepared& cuboids_a() {
@@ -103,6 +111,26 @@ void BM_McDomainSweeps(benchmark::State& bs) {
   omp_set_num_threads(static_cast<int>(bs.range(1)));
 #endif
   run_cycles(bs, p, true);
+#ifdef _OPENMP
+  omp_set_num_threads(previous);
+#endif
+}
+
+// NPT cycles, as MC preparation runs them (one volume move per cycle on average, ln V moves of
+// ±0.01): (a) at βP = 0.015 and (c) at βP = 0.3, near their states' equilibrium (docs/
+// performance.md). range(0) = 0 for (a), 2 for (c); range(1) = OpenMP threads; range(2) = 1 for
+// domain sweeps. Wall-clock rates of particle trials (volume moves not counted).
+void BM_McNpt(benchmark::State& bs) {
+  const bool a = bs.range(0) == 0;
+  const double beta_pressure = a ? 0.015 : 0.3;
+  // All eight variants start from the same move sizes, tuned once (sequentially) under NPT.
+  static std::map<bool, Prepared> prepared;
+  if (!prepared.count(a)) prepared.emplace(a, tuned(a ? cuboids_a() : rods_c(), beta_pressure));
+#ifdef _OPENMP
+  const int previous = omp_get_max_threads();
+  omp_set_num_threads(static_cast<int>(bs.range(1)));
+#endif
+  run_cycles(bs, prepared.at(a), bs.range(2) != 0, beta_pressure);
 #ifdef _OPENMP
   omp_set_num_threads(previous);
 #endif
@@ -148,6 +176,7 @@ void BM_McWideBoards2000Nematic(benchmark::State& bs) {
 
 BENCHMARK(BM_McRods2000Nematic)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_McDomainSweeps)->ArgsProduct({{0, 2}, {1, 2}})->Unit(benchmark::kMillisecond)->MinTime(2.0)->UseRealTime();
+BENCHMARK(BM_McNpt)->ArgsProduct({{0, 2}, {1, 2}, {0, 1}})->Unit(benchmark::kMillisecond)->MinTime(2.0)->UseRealTime();
 BENCHMARK(BM_McRodsNematicN)->Arg(8000)->Arg(32000)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_McRodsSpheres2200Nematic)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_McWideBoards2000Nematic)->Unit(benchmark::kMillisecond)->MinTime(2.0);

@@ -13,6 +13,8 @@ are tuned to the acceptance that anisodyn's DMC reaches. HOOMD runs with its def
 
     PYTHONPATH=$(bench/peers/hoomd.sh) bench/peers/hpmc_side_by_side.py [--systems a,b,c,d] [--rounds 3]
 
+Systems: a, b, c, d, e (issue 18's bench set) and c8000, c32000 ((c) at N = 8000 and 32000).
+
 HOOMD's convex polyhedron cannot hold a sphere, so the board + sphere mixture (e) runs for
 anisodyn only (bench_mc_throughput); the driver says so. Exit 77 when HOOMD is not importable.
 """
@@ -32,6 +34,9 @@ SYSTEMS = {
     "c": ("BM_McRods2000Nematic", "BM_DmcMcSystems/2", "cuboids_12x1x1_N2000_eta0.34", "2000 boards 12x1x1, eta 0.34, nematic"),
     "d": ("BM_McWideBoards2000Nematic", "BM_DmcMcSystems/3", "cuboids_12x8x1_N2000_eta0.34_compressed",
           "2000 boards 12x8x1, eta 0.34 (quick-compressed)"),
+    # (c) at larger N, for the cost per trial against N (MC only)
+    "c8000": ("BM_McRodsNematicN/8000", None, "cuboids_12x1x1_N8000_eta0.34", "8000 boards 12x1x1, eta 0.34, nematic"),
+    "c32000": ("BM_McRodsNematicN/32000", None, "cuboids_12x1x1_N32000_eta0.34", "32000 boards 12x1x1, eta 0.34, nematic"),
 }
 TARGET_ACCEPTANCE = 0.35
 
@@ -160,6 +165,9 @@ def main():
             continue
         mc_benchmark, dmc_benchmark, state_name, label = SYSTEMS[key]
         benchmark = dmc_benchmark if args.dmc else mc_benchmark
+        if benchmark is None:
+            print(f"({key}) {label}: no DMC benchmark for this state; skipped")
+            continue
         path = os.path.join(cache, state_name + ".h5")
         target = TARGET_ACCEPTANCE
         if args.dmc or not os.path.exists(path):  # the anisodyn benchmark prepares and caches the state

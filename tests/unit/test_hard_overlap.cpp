@@ -10,10 +10,12 @@
 #include "anisodyn/mc/mc_engine.hpp"
 #include "brute_force_search.hpp"
 #include "lattice_states.hpp"
+#include "thread_count.hpp"
 
 using namespace anisodyn;
 using anisodyn::testing_support::brute_force_overlaps;
 using anisodyn::testing_support::lattice_of;
+using anisodyn::testing_support::on_thread_counts;
 
 namespace {
 
@@ -35,6 +37,18 @@ void compare_trials(const State& s, const HardOverlap& ho, Rng& rng, int trials,
   EXPECT_LT(hits, trials - trials / 20);
 }
 
+/// 150 randomly oriented boards 12×3.46×1 and 100 spheres d = 0.5, placed at random in a box two
+/// or three board cut-offs wide (trees for the boards, a grid for the spheres).
+State boards_and_spheres(Rng& rng) {
+  State s;
+  s.species.push_back(Species{"board", Shape::cuboid(1.0, 3.4641, 12.0), 1.0, {}, {}});
+  s.species.push_back(Species{"tracer", Shape::sphere(0.5), 1.0, {}, {}});
+  s.box = Box(Vec3(30, 30, 40));
+  PlacementRequest req{{150, 100}, {OrientationRule{OrientationRule::Mode::Random}, OrientationRule{}}, 100000};
+  insert_randomly(s, req, rng);
+  return s;
+}
+
 }  // namespace
 
 TEST(HardOverlap, MatchesBruteForceForHardSpheresAfterVolumeMoves) {
@@ -50,13 +64,8 @@ TEST(HardOverlap, MatchesBruteForceForHardSpheresAfterVolumeMoves) {
 }
 
 TEST(HardOverlap, MatchesBruteForceForBoardsAndSpheres) {
-  State s;
-  s.species.push_back(Species{"board", Shape::cuboid(1.0, 3.4641, 12.0), 1.0, {}, {}});
-  s.species.push_back(Species{"tracer", Shape::sphere(0.5), 1.0, {}, {}});
-  s.box = Box(Vec3(30, 30, 40));
-  PlacementRequest req{{150, 100}, {OrientationRule{OrientationRule::Mode::Random}, OrientationRule{}}, 100000};
   Rng rng(5, 0);
-  insert_randomly(s, req, rng);
+  const State s = boards_and_spheres(rng);
   HardOverlap ho(s);
   // The box is two or three board cut-offs wide: the board grid would scan every cell.
   EXPECT_TRUE(ho.uses_tree(0, 0));
@@ -81,6 +90,30 @@ TEST(HardOverlap, TreesMatchBruteForceAfterManyAcceptedMoves) {
   compare_trials(s, mc.overlap(), rng, 4000, 0.5);
   HardOverlap fresh(s);
   compare_trials(s, fresh, rng, 2000, 0.5);
+}
+
+TEST(HardOverlap, AnyOverlapFindsOnePlantedPairOnOneOrTwoThreads) {
+  // A configuration without overlaps (boards and spheres, grids and trees), then copies in which
+  // one particle sits on another's centre: the pair overlaps whatever the shapes. The planted
+  // pairs lie at the start, the middle and the end of the index range, so that on two threads
+  // either thread's share holds them. any_overlap() must agree with the brute force each time.
+  Rng rng(5, 0);
+  const State s = boards_and_spheres(rng);
+  const std::size_t n = s.particles.size();
+  auto brute_force_any = [](const State& t) {
+    for (std::size_t i = 0; i < t.particles.size(); ++i)
+      if (brute_force_overlaps(t, i, t.particles.position(i), t.particles.orientation(i).toRotationMatrix())) return true;
+    return false;
+  };
+  ASSERT_FALSE(brute_force_any(s));
+  EXPECT_EQ(on_thread_counts({1, 2}, [&] { return HardOverlap(s).any_overlap(); }), (std::vector<bool>{false, false}));
+  for (const auto& [i, j] : {std::pair<std::size_t, std::size_t>{0, 1}, {n / 2, 7}, {n - 1, n - 2}, {140, 249}}) {
+    State t = s;
+    t.particles.set_position(i, t.particles.position(j));
+    ASSERT_TRUE(brute_force_any(t));
+    EXPECT_EQ(on_thread_counts({1, 2}, [&] { return HardOverlap(t).any_overlap(); }), (std::vector<bool>{true, true}))
+        << "particle " << i << " on " << j;
+  }
 }
 
 TEST(HardOverlap, SpheresInALargeBoxKeepTheGrid) {

@@ -1,6 +1,7 @@
 #include "anisodyn/interactions/hard_overlap.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <string>
 
@@ -342,6 +343,23 @@ std::optional<std::pair<std::int32_t, std::int32_t>> HardOverlap::first_overlap(
     if (partner >= 0) return std::make_pair(i, partner);
   }
   return std::nullopt;
+}
+
+bool HardOverlap::any_overlap() const {
+  const Particles& p = state_->particles;
+  const auto n = static_cast<std::int64_t>(p.size());
+  std::atomic<bool> found{false};
+  // Chunks small enough that a thread stops soon after another has found an overlap, large
+  // enough that the flag is read rarely next to the queries.
+#pragma omp parallel for schedule(dynamic, 64)
+  for (std::int64_t k = 0; k < n; ++k) {
+    if (found.load(std::memory_order_relaxed)) continue;
+    const auto ui = static_cast<std::size_t>(k);
+    const auto i = static_cast<std::int32_t>(k);
+    if (for_each_overlap(i, p.position(ui), rot_[ui], i + 1, [](std::int32_t) { return true; }))
+      found.store(true, std::memory_order_relaxed);
+  }
+  return found.load();
 }
 
 }  // namespace anisodyn

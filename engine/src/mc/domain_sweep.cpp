@@ -91,13 +91,20 @@ void DomainSweep::gather(const State& state, Part& part) const {
   if (part.sub.species.size() != state.species.size()) part.sub.species = state.species;
   part.sub.box = state.box;
   clear_particles(part.sub.particles);
-  part.global.clear();
   part.movable.clear();
+  const std::vector<double>& coord = part.slab.axis == 0 ? p.x : part.slab.axis == 1 ? p.y : p.z;
+  // First the bodies that reach into the slab, without a branch: every index is written and
+  // kept when it reaches (about half do, in no predictable order).
+  part.global.resize(p.size());
+  std::size_t count = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    const double c = p.position(i)[part.slab.axis], h = half_extent_[i];
-    if (!outer.reaches(c, h, L)) continue;
-    if (inner.holds(c, h, L)) part.movable.push_back(static_cast<std::int32_t>(part.global.size()));
-    part.global.push_back(static_cast<std::int32_t>(i));
+    part.global[count] = static_cast<std::int32_t>(i);
+    count += outer.reaches(coord[i], half_extent_[i], L) ? 1 : 0;
+  }
+  part.global.resize(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    const auto i = static_cast<std::size_t>(part.global[k]);
+    if (inner.holds(coord[i], half_extent_[i], L)) part.movable.push_back(static_cast<std::int32_t>(k));
     append_particle(part.sub.particles, p, i);
   }
   part.counters.reset(state.species.size());

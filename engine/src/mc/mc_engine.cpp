@@ -58,6 +58,14 @@ void McEngine::rebuild_overlap() {
   overlap_stale_ = false;
 }
 
+void McEngine::positions_rescaled() {
+  // Domain sweeps search copies of their slabs, so the whole configuration's structures are
+  // needed only by the next compression's overlap check (or a caller of overlap()): rebuild them
+  // then. The sequential sweep's next trial needs them now.
+  if (domains_) overlap_stale_ = true;
+  else rebuild_overlap();
+}
+
 void McEngine::cycle() {
   const std::size_t n = state_.particles.size();
   if (domains_) {
@@ -88,7 +96,7 @@ void McEngine::rescale_allowing_overlaps(double volume) {
   const Vec3 new_edges = old_edges * std::cbrt(volume / state_.box.volume());
   rescale_positions(new_edges.cwiseQuotient(old_edges));
   state_.box.set_edges(new_edges);
-  rebuild_overlap();
+  positions_rescaled();
 }
 
 void McEngine::rescale_positions(const Vec3& factor) {
@@ -110,12 +118,12 @@ bool McEngine::any_overlap_after_rescale(const Vec3& new_edges) {
   rescale_positions(new_edges.cwiseQuotient(old_edges));
   state_.box.set_edges(new_edges);
   rebuild_overlap();
-  if (!overlap_.first_overlap()) return false;
+  if (!overlap_.any_overlap()) return false;
   p.x.swap(saved_x_);
   p.y.swap(saved_y_);
   p.z.swap(saved_z_);
   state_.box.set_edges(old_edges);
-  rebuild_overlap();
+  positions_rescaled();
   return true;
 }
 
@@ -141,7 +149,7 @@ void McEngine::volume_move() {
   if (radial && new_volume >= old_volume) {
     rescale_positions(new_edges.cwiseQuotient(old_edges));
     state_.box.set_edges(new_edges);
-    rebuild_overlap();
+    positions_rescaled();
   } else if (any_overlap_after_rescale(new_edges)) {
     return;
   }
@@ -155,7 +163,7 @@ bool McEngine::try_rescale(double volume) {
   if (volume >= state_.box.volume()) {
     rescale_positions(new_edges.cwiseQuotient(old_edges));
     state_.box.set_edges(new_edges);
-    rebuild_overlap();
+    positions_rescaled();
     return true;
   }
   return !any_overlap_after_rescale(new_edges);

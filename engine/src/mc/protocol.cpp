@@ -138,7 +138,7 @@ void McRunner::run_quick_compress(io::H5mdWriter& out, const McPhase& phase) {
     engine_.rescale_allowing_overlaps(std::max(target_volume, state_.box.volume() * (1.0 - cursor_.quick_step)));
     engine_.set_overlap_removal(true);
     std::int64_t sweeps = 0;
-    while (engine_.overlap().first_overlap()) {
+    while (engine_.overlap().any_overlap()) {
       loop_.step(out);
       ++sweeps;
       if (interrupt_requested()) interrupt_at(before_shrink);

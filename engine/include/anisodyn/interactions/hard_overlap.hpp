@@ -55,6 +55,9 @@ class HardOverlap {
   void moved(std::int32_t i, const Vec3& r, const Mat3& rot);
   /// First overlapping pair (i < j) of the configuration, if any.
   std::optional<std::pair<std::int32_t, std::int32_t>> first_overlap() const;
+  /// Whether any two particles overlap: first_overlap() as a yes or no, checked on all OpenMP
+  /// threads (the answer does not depend on their number). For the checks after a volume move.
+  bool any_overlap() const;
 
   const Mat3& rotation(std::int32_t i) const { return rot_[static_cast<std::size_t>(i)]; }
   double cutoff(int a, int b) const { return cutoff_[static_cast<std::size_t>(a * nspecies_ + b)]; }

@@ -71,6 +71,9 @@ class McEngine {
   /// Brings the neighbour structures up to date after domain sweeps moved particles behind them.
   void refresh_overlap();
   void rebuild_overlap();
+  /// After every position was rescaled (or restored): rebuilds the overlap search now or marks it
+  /// stale (domain sweeps).
+  void positions_rescaled();
   /// Rescales the box and positions to `new_edges`; if that creates an overlap, restores the
   /// previous box and the saved positions bit for bit and returns true.
   bool any_overlap_after_rescale(const Vec3& new_edges);
