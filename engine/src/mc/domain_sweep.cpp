@@ -22,22 +22,11 @@ int slab_threads() {
 #endif
 }
 
-void append_particle(Particles& to, const Particles& from, std::size_t i) {
-  to.add(from.species[i], from.position(i), from.orientation(i), from.id[i]);
-  to.set_image(to.size() - 1, from.image(i));
-}
-
 template <class Parts>
 int first_active(const Parts& parts) {
   for (std::size_t k = 0; k < parts.size(); ++k)
     if (!parts[k].movable.empty()) return static_cast<int>(k);
   return -1;
-}
-
-void clear_particles(Particles& p) {
-  for (auto* v : {&p.x, &p.y, &p.z, &p.qw, &p.qx, &p.qy, &p.qz}) v->clear();
-  for (auto* v : {&p.ix, &p.iy, &p.iz, &p.species}) v->clear();
-  p.id.clear();
 }
 
 }  // namespace
@@ -90,7 +79,6 @@ void DomainSweep::gather(const State& state, Part& part) const {
   const Slab outer{part.slab.axis, part.slab.start - margin, part.slab.width + 2.0 * margin};
   if (part.sub.species.size() != state.species.size()) part.sub.species = state.species;
   part.sub.box = state.box;
-  clear_particles(part.sub.particles);
   part.movable.clear();
   const std::vector<double>& coord = part.slab.axis == 0 ? p.x : part.slab.axis == 1 ? p.y : p.z;
   // First the bodies that reach into the slab, without a branch: every index is written and
@@ -105,8 +93,8 @@ void DomainSweep::gather(const State& state, Part& part) const {
   for (std::size_t k = 0; k < count; ++k) {
     const auto i = static_cast<std::size_t>(part.global[k]);
     if (inner.holds(coord[i], half_extent_[i], L)) part.movable.push_back(static_cast<std::int32_t>(k));
-    append_particle(part.sub.particles, p, i);
   }
+  part.sub.particles.assign_subset(p, part.global);
   part.counters.reset(state.species.size());
 }
 

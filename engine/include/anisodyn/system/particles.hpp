@@ -49,6 +49,26 @@ struct Particles {
       for (auto* v : {&lx, &ly, &lz}) v->push_back(0.0);
   }
 
+  /// Makes these the particles `indices` of `from`, in that order: positions, images,
+  /// orientations, species and ids (at rest, if this state carries velocities or angular
+  /// momenta). Keeps the arrays' memory: domain sweeps copy their slabs every cycle.
+  void assign_subset(const Particles& from, const std::vector<std::int32_t>& indices) {
+    const std::size_t n = indices.size();
+    auto pick = [&](auto& to, const auto& source) {
+      to.resize(n);
+      for (std::size_t k = 0; k < n; ++k) to[k] = source[static_cast<std::size_t>(indices[k])];
+    };
+    pick(x, from.x); pick(y, from.y); pick(z, from.z);
+    pick(ix, from.ix); pick(iy, from.iy); pick(iz, from.iz);
+    pick(qw, from.qw); pick(qx, from.qx); pick(qy, from.qy); pick(qz, from.qz);
+    pick(species, from.species);
+    pick(id, from.id);
+    if (velocities_)
+      for (auto* v : {&vx, &vy, &vz}) v->assign(n, 0.0);
+    if (angular_momenta_)
+      for (auto* v : {&lx, &ly, &lz}) v->assign(n, 0.0);
+  }
+
   void pop_back() {
     for (auto* v : {&x, &y, &z, &qw, &qx, &qy, &qz}) v->pop_back();
     for (auto* v : {&ix, &iy, &iz, &species}) v->pop_back();
