@@ -93,26 +93,25 @@ TEST(HardOverlap, TreesMatchBruteForceAfterManyAcceptedMoves) {
 }
 
 TEST(HardOverlap, AnyOverlapFindsOnePlantedPairOnOneOrTwoThreads) {
-  // A configuration without overlaps (boards and spheres, grids and trees), then copies in which
-  // one particle sits on another's centre: the pair overlaps whatever the shapes. The planted
+  // Lattices without overlaps (rods, searched by trees; spheres, by the grid), large enough that
+  // the check runs on two threads when it has them, then copies in which one particle sits on
+  // another's centre: the pair overlaps whatever the shapes (checked by brute force). The planted
   // pairs lie at the start, the middle and the end of the index range, so that on two threads
-  // either thread's share holds them. any_overlap() must agree with the brute force each time.
-  Rng rng(5, 0);
-  const State s = boards_and_spheres(rng);
-  const std::size_t n = s.particles.size();
-  auto brute_force_any = [](const State& t) {
-    for (std::size_t i = 0; i < t.particles.size(); ++i)
-      if (brute_force_overlaps(t, i, t.particles.position(i), t.particles.orientation(i).toRotationMatrix())) return true;
-    return false;
-  };
-  ASSERT_FALSE(brute_force_any(s));
-  EXPECT_EQ(on_thread_counts({1, 2}, [&] { return HardOverlap(s).any_overlap(); }), (std::vector<bool>{false, false}));
-  for (const auto& [i, j] : {std::pair<std::size_t, std::size_t>{0, 1}, {n / 2, 7}, {n - 1, n - 2}, {140, 249}}) {
-    State t = s;
-    t.particles.set_position(i, t.particles.position(j));
-    ASSERT_TRUE(brute_force_any(t));
-    EXPECT_EQ(on_thread_counts({1, 2}, [&] { return HardOverlap(t).any_overlap(); }), (std::vector<bool>{true, true}))
-        << "particle " << i << " on " << j;
+  // either thread's share holds them.
+  Rng rng(41, 0);
+  for (const State& s : {lattice_of(Species{"rod", Shape::cuboid(1.0, 1.0, 12.0), 1.0, {}, {}}, 1200, 0.2, rng),
+                         lattice_of(Species{"hs", Shape::sphere(1.0), 1.0, {}, {}}, 1500, 0.3, rng)}) {
+    const std::size_t n = s.particles.size();
+    ASSERT_GE(n, 1000u);
+    ASSERT_FALSE(HardOverlap(s).first_overlap().has_value());
+    EXPECT_EQ(on_thread_counts({1, 2}, [&] { return HardOverlap(s).any_overlap(); }), (std::vector<bool>{false, false}));
+    for (const auto& [i, j] : {std::pair<std::size_t, std::size_t>{0, 1}, {n / 2, 7}, {n - 1, n - 2}, {n / 3, n - 1}}) {
+      State t = s;
+      t.particles.set_position(i, t.particles.position(j));
+      ASSERT_TRUE(brute_force_overlaps(t, i, t.particles.position(i), t.particles.orientation(i).toRotationMatrix()));
+      EXPECT_EQ(on_thread_counts({1, 2}, [&] { return HardOverlap(t).any_overlap(); }), (std::vector<bool>{true, true}))
+          << s.species[0].name << ": particle " << i << " on " << j;
+    }
   }
 }
 
