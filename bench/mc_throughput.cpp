@@ -137,12 +137,22 @@ void BM_McNpt(benchmark::State& bs) {
 }
 
 // The same rods at N = 8000 and 32000 (boxes 66 and 104 T): the cost per trial should not grow with N.
+// range(1) = 0: the sequential sweep; k > 0: domain sweeps on k OpenMP threads (wall-clock rate
+// then), whose slabs each hold about half the configuration.
 void BM_McRodsNematicN(benchmark::State& bs) {
   static std::map<std::int64_t, Prepared> prepared;
   const std::int64_t n = bs.range(0);
   if (!prepared.count(n)) prepared.emplace(n, prepare(rods_state_name(static_cast<std::size_t>(n)), kRod, static_cast<std::size_t>(n), 0.34, 5000));
   const Prepared& p = prepared.at(n);
-  run_cycles(bs, p);
+  const auto domain_threads = static_cast<int>(bs.range(1));
+#ifdef _OPENMP
+  const int previous = omp_get_max_threads();
+  if (domain_threads > 0) omp_set_num_threads(domain_threads);
+#endif
+  run_cycles(bs, p, domain_threads > 0);
+#ifdef _OPENMP
+  omp_set_num_threads(previous);
+#endif
   bs.counters["U_L"] = body_axis_order(p.state, 0)[2].order;
 }
 
@@ -177,7 +187,8 @@ void BM_McWideBoards2000Nematic(benchmark::State& bs) {
 BENCHMARK(BM_McRods2000Nematic)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_McDomainSweeps)->ArgsProduct({{0, 2}, {1, 2}})->Unit(benchmark::kMillisecond)->MinTime(2.0)->UseRealTime();
 BENCHMARK(BM_McNpt)->ArgsProduct({{0, 2}, {1, 2}, {0, 1}})->Unit(benchmark::kMillisecond)->MinTime(2.0)->UseRealTime();
-BENCHMARK(BM_McRodsNematicN)->Arg(8000)->Arg(32000)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_McRodsNematicN)->Args({8000, 0})->Args({32000, 0})->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_McRodsNematicN)->ArgsProduct({{2000, 8000, 32000}, {1, 2}})->Unit(benchmark::kMillisecond)->MinTime(2.0)->UseRealTime();
 BENCHMARK(BM_McRodsSpheres2200Nematic)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_McWideBoards2000Nematic)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_McCuboids2000)->Unit(benchmark::kMillisecond)->MinTime(2.0);

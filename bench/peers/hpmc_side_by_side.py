@@ -35,8 +35,8 @@ SYSTEMS = {
     "d": ("BM_McWideBoards2000Nematic", "BM_DmcMcSystems/3", "cuboids_12x8x1_N2000_eta0.34_compressed",
           "2000 boards 12x8x1, eta 0.34 (quick-compressed)"),
     # (c) at larger N, for the cost per trial against N (MC only)
-    "c8000": ("BM_McRodsNematicN/8000", None, "cuboids_12x1x1_N8000_eta0.34", "8000 boards 12x1x1, eta 0.34, nematic"),
-    "c32000": ("BM_McRodsNematicN/32000", None, "cuboids_12x1x1_N32000_eta0.34", "32000 boards 12x1x1, eta 0.34, nematic"),
+    "c8000": ("BM_McRodsNematicN/8000/0", None, "cuboids_12x1x1_N8000_eta0.34", "8000 boards 12x1x1, eta 0.34, nematic"),
+    "c32000": ("BM_McRodsNematicN/32000/0", None, "cuboids_12x1x1_N32000_eta0.34", "32000 boards 12x1x1, eta 0.34, nematic"),
 }
 TARGET_ACCEPTANCE = 0.35
 
