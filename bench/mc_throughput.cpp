@@ -12,17 +12,16 @@
 // (default: ./bench-cache) so repeated runs time only the production loop.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <map>
 #include <optional>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include "anisodyn/system/order.hpp"
 #include "support/prepared_state.hpp"
+#include "thread_count.hpp"
 
 using namespace anisodyn;
+using anisodyn::testing_support::ScopedThreadCount;
 
 namespace {
 
@@ -106,14 +105,8 @@ void BM_McRods2000Nematic(benchmark::State& bs) {
 // range(1) = OpenMP threads. Wall-clock rates.
 void BM_McDomainSweeps(benchmark::State& bs) {
   const Prepared& p = bs.range(0) == 0 ? cuboids_a() : rods_c();
-#ifdef _OPENMP
-  const int previous = omp_get_max_threads();
-  omp_set_num_threads(static_cast<int>(bs.range(1)));
-#endif
+  const ScopedThreadCount threads(static_cast<int>(bs.range(1)));
   run_cycles(bs, p, true);
-#ifdef _OPENMP
-  omp_set_num_threads(previous);
-#endif
 }
 
 // NPT cycles, as MC preparation runs them (one volume move per cycle on average, ln V moves of
@@ -126,14 +119,8 @@ void BM_McNpt(benchmark::State& bs) {
   // All eight variants start from the same move sizes, tuned once (sequentially) under NPT.
   static std::map<bool, Prepared> prepared;
   if (!prepared.count(a)) prepared.emplace(a, tuned(a ? cuboids_a() : rods_c(), beta_pressure));
-#ifdef _OPENMP
-  const int previous = omp_get_max_threads();
-  omp_set_num_threads(static_cast<int>(bs.range(1)));
-#endif
+  const ScopedThreadCount threads(static_cast<int>(bs.range(1)));
   run_cycles(bs, prepared.at(a), bs.range(2) != 0, beta_pressure);
-#ifdef _OPENMP
-  omp_set_num_threads(previous);
-#endif
 }
 
 // The same rods at N = 8000 and 32000 (boxes 66 and 104 T): the cost per trial should not grow with N.
@@ -145,14 +132,8 @@ void BM_McRodsNematicN(benchmark::State& bs) {
   if (!prepared.count(n)) prepared.emplace(n, prepare(rods_state_name(static_cast<std::size_t>(n)), kRod, static_cast<std::size_t>(n), 0.34, 5000));
   const Prepared& p = prepared.at(n);
   const auto domain_threads = static_cast<int>(bs.range(1));
-#ifdef _OPENMP
-  const int previous = omp_get_max_threads();
-  if (domain_threads > 0) omp_set_num_threads(domain_threads);
-#endif
+  const ScopedThreadCount threads(std::max(domain_threads, 1));
   run_cycles(bs, p, domain_threads > 0);
-#ifdef _OPENMP
-  omp_set_num_threads(previous);
-#endif
   bs.counters["U_L"] = body_axis_order(p.state, 0)[2].order;
 }
 
