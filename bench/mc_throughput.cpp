@@ -5,6 +5,8 @@
 //   spheres — N = 4000 hard spheres at η = 0.40;
 //   rods nematic — N = 2000 boards 12×1×1 at η = 0.34 (from an aligned lattice: nematic);
 //   rods nematic at N = 8000 and 32000 — the same density and preparation (cost per trial flat in N);
+//   rods nematic tiled — the N = 2000 state repeated 2×2×2 and 3×3×3 times (16000 and 54000): the
+//     same neighbourhoods at every N, so any growth of the cost per trial is the algorithm's;
 //   rods + spheres — the 2000 rods with 200 spheres d = 0.1 (study A3's mixture);
 //   wide boards nematic — N = 2000 boards 12×8×1 at η = 0.34, quick-compressed from a dilute lattice;
 //   domain sweeps (two-thread preparation) on the first and third, with one and two threads.
@@ -76,6 +78,10 @@ void run_cycles(benchmark::State& bs, const Prepared& prepared, bool domains = f
   bs.counters["acceptance"] = acc;
   bs.counters["eta"] = state.packing_fraction();
   if (beta_pressure) bs.counters["volume_acceptance"] = MoveCounters::ratio(w.volume_accepted, w.volume_tried);
+  if (const DomainSweep* d = mc.domain_sweep(); d && d->layout()) {
+    const DomainSweep::Layout& g = *d->layout();
+    bs.counters["domains"] = g[0] * g[1] * g[2];
+  }
 }
 
 const Prepared& cuboids_a() {
@@ -137,6 +143,35 @@ void BM_McRodsNematicN(benchmark::State& bs) {
   bs.counters["U_L"] = body_axis_order(p.state, 0)[2].order;
 }
 
+/// `tiles`³ copies of a periodic state side by side: a box `tiles` times as wide with the same
+/// neighbourhoods everywhere.
+State tiled(const State& one, int tiles) {
+  State s;
+  s.species = one.species;
+  s.box = Box(one.box.edges() * tiles);
+  const Particles& p = one.particles;
+  std::int64_t id = 0;
+  for (int a = 0; a < tiles; ++a)
+    for (int b = 0; b < tiles; ++b)
+      for (int c = 0; c < tiles; ++c)
+        for (std::size_t i = 0; i < p.size(); ++i) {
+          const Vec3 shift = one.box.edges().cwiseProduct(Vec3(a, b, c));
+          s.particles.add(p.species[i], p.position(i) + shift, p.orientation(i), id++);
+        }
+  return s;
+}
+
+// The rods of (c) tiled: range(0) = tiles per axis (N = 2000 tiles³); range(1) as above (0:
+// sequential, k > 0: domain sweeps on k threads, wall-clock rate). The 2000 rods' tuned moves.
+void BM_McRodsTiled(benchmark::State& bs) {
+  const auto tiles = static_cast<int>(bs.range(0));
+  static std::map<int, Prepared> prepared;
+  if (!prepared.count(tiles)) prepared.emplace(tiles, Prepared{tiled(rods_c().state, tiles), rods_c().moves});
+  const auto domain_threads = static_cast<int>(bs.range(1));
+  const ScopedThreadCount threads(std::max(domain_threads, 1));
+  run_cycles(bs, prepared.at(tiles), domain_threads > 0);
+}
+
 // Study A3's mixture at η = 0.34: the rods of (c) with 200 spheres d = 0.1 inserted (the DMC
 // benchmark's state; spheres take their own tuned translation).
 void BM_McRodsSpheres2200Nematic(benchmark::State& bs) {
@@ -170,6 +205,7 @@ BENCHMARK(BM_McDomainSweeps)->ArgsProduct({{0, 2}, {1, 2}})->Unit(benchmark::kMi
 BENCHMARK(BM_McNpt)->ArgsProduct({{0, 2}, {1, 2}, {0, 1}})->Unit(benchmark::kMillisecond)->MinTime(2.0)->UseRealTime();
 BENCHMARK(BM_McRodsNematicN)->Args({8000, 0})->Args({32000, 0})->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_McRodsNematicN)->ArgsProduct({{2000, 8000, 32000}, {1, 2}})->Unit(benchmark::kMillisecond)->MinTime(2.0)->UseRealTime();
+BENCHMARK(BM_McRodsTiled)->ArgsProduct({{1, 2, 3}, {0, 1, 2}})->Unit(benchmark::kMillisecond)->MinTime(2.0)->UseRealTime();
 BENCHMARK(BM_McRodsSpheres2200Nematic)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_McWideBoards2000Nematic)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_McCuboids2000)->Unit(benchmark::kMillisecond)->MinTime(2.0);

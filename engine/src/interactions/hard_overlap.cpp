@@ -50,9 +50,23 @@ void HardOverlap::rebuild(const State& state) {
   for (std::size_t i = 0; i < p.size(); ++i) rot_[i] = p.orientation(i).toRotationMatrix();
   std::vector<double> self(static_cast<std::size_t>(nspecies_));
   for (int s = 0; s < nspecies_; ++s) self[static_cast<std::size_t>(s)] = cutoff(s, s);
-  cells_.build(state.box, p.x, p.y, p.z, p.species, self, expected_counts_);
+  cells_.configure(state.box, p.species, self, expected_counts_);
   choose_searches();
+  cells_.fill(p.x, p.y, p.z, grids_read());
   if (skin_.any()) rebuild_skin_lists();
+}
+
+std::vector<char> HardOverlap::grids_read() const {
+  // Skin lists find their partners in the grids; insertions (configuration building) may change
+  // the choice of search; otherwise a grid every query of which goes to the tree is not kept: in a
+  // domain sweep's copy, whose particles crowd a few cells of the whole box, it cost 10% of the
+  // time (docs/performance.md).
+  const bool all = skin_.any() || !expected_counts_.empty();
+  std::vector<char> read(static_cast<std::size_t>(nspecies_), all ? 1 : 0);
+  for (int a = 0; a < nspecies_; ++a)
+    for (int b = 0; b < nspecies_; ++b)
+      if (!uses_tree(a, b)) read[static_cast<std::size_t>(b)] = 1;
+  return read;
 }
 
 void HardOverlap::choose_searches() {
@@ -261,7 +275,11 @@ void HardOverlap::use_skin_lists(std::vector<double> half_skin) {
   for (std::size_t a = 0; a < ns; ++a)
     if (!used[a]) half_skin[a] = 0.0;
   skin_.configure(std::move(half_skin), std::move(listed));
-  if (skin_.any()) rebuild_skin_lists();
+  if (skin_.any()) {
+    const Particles& p = state_->particles;
+    cells_.fill(p.x, p.y, p.z, grids_read());
+    rebuild_skin_lists();
+  }
 }
 
 void HardOverlap::rebuild_skin_lists() {
@@ -321,8 +339,8 @@ int HardOverlap::count_overlaps(std::int32_t i, const Vec3& r, const Mat3& rot) 
 
 void HardOverlap::moved(std::int32_t i, const Vec3& r, const Mat3& rot) {
   rot_[static_cast<std::size_t>(i)] = rot;
-  cells_.move(i, r);
   const int a = state_->particles.species[static_cast<std::size_t>(i)];
+  if (cells_.filled(a)) cells_.move(i, r);
   if (tree_needed(a)) {
     AabbTree& tree = trees_[static_cast<std::size_t>(a)];
     tree.move(i, r, bounding_half_extents(a, rot));

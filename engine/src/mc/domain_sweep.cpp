@@ -11,13 +11,17 @@ namespace anisodyn {
 
 namespace {
 
-/// Stream of the slab generators (their seeds come from the engine's generator).
+/// Stream of the domain generators (their seeds come from the engine's generator).
 constexpr std::uint64_t kSlabStream = 0x736c6162;  // "slab"
+/// The automatic grid keeps every domain at least this many mean lab extents wide along a cut
+/// axis: then at most about a third of the particles straddle each cut.
+constexpr double kMinEdgeInExtents = 3.0;
 
-int slab_threads() {
+int domain_threads(std::size_t domains) {
 #ifdef _OPENMP
-  return std::min(DomainSweep::kSlabs, omp_get_max_threads());
+  return static_cast<int>(std::min<std::size_t>(domains, static_cast<std::size_t>(omp_get_max_threads())));
 #else
+  (void)domains;
   return 1;
 #endif
 }
@@ -29,86 +33,172 @@ int first_active(const Parts& parts) {
   return -1;
 }
 
+int domain_count(const DomainSweep::Layout& count) { return count[0] * count[1] * count[2]; }
+
 }  // namespace
+
+std::optional<DomainSweep::Layout> DomainSweep::automatic_layout(const State& state) {
+  const Particles& p = state.particles;
+  if (p.size() < kGridFrom) return std::nullopt;
+  const std::size_t wanted = p.size() / kParticlesPerDomain;
+  Vec3 extent = Vec3::Zero();
+  for (std::size_t i = 0; i < p.size(); ++i)
+    extent += 2.0 * state.species[static_cast<std::size_t>(p.species[i])].shape.lab_half_extents(p.orientation(i).toRotationMatrix());
+  extent /= static_cast<double>(p.size());
+  const Vec3& L = state.box.edges();
+  Layout count{1, 1, 1};
+  while (static_cast<std::size_t>(domain_count(count)) < wanted) {
+    // The axis whose domains, one more along it, stay widest in units of the mean extent.
+    int best = -1;
+    double widest = kMinEdgeInExtents;
+    for (int k = 0; k < 3; ++k) {
+      const double width = L[k] / (count[static_cast<std::size_t>(k)] + 1) / extent[k];
+      if (width >= widest) {
+        widest = width;
+        best = k;
+      }
+    }
+    if (best < 0) break;
+    ++count[static_cast<std::size_t>(best)];
+  }
+  if (domain_count(count) < 2) return std::nullopt;
+  return count;
+}
+
+void DomainSweep::set_layout(const std::optional<Layout>& grid) {
+  grid_ = grid;
+  layout_chosen_ = true;
+}
+
+DomainSweep::Cut DomainSweep::draw_cut(Rng& rng) const {
+  Cut cut;
+  if (!grid_) {
+    const auto axis = static_cast<std::size_t>(rng.index(3));
+    cut.count[axis] = 2;
+    cut.offset[static_cast<int>(axis)] = rng.uniform();
+    return cut;
+  }
+  cut.count = *grid_;
+  for (int k = 0; k < 3; ++k)
+    if (cut.count[static_cast<std::size_t>(k)] > 1) cut.offset[k] = rng.uniform();
+  return cut;
+}
 
 void DomainSweep::cycle(State& state, Rng& rng, const MoveSizes& moves, const OrientationalField& field, bool removing_overlaps,
                         MoveCounters& counters) {
-  const Particles& p = state.particles;
-  const std::size_t n = p.size();
-  const int axis = static_cast<int>(rng.index(3));
-  const double L = state.box.edges()[axis];
-  const double start = rng.uniform() * L;
-  std::array<std::uint64_t, kSlabs> seeds{};
-  for (auto& s : seeds) s = rng.bits();
+  const std::size_t n = state.particles.size();
+  if (!layout_chosen_) set_layout(automatic_layout(state));
+  if (!cut_) {
+    cut_ = draw_cut(rng);
+    copies_valid_ = false;
+  }
+  seeds_.resize(static_cast<std::size_t>(domain_count(cut_->count)));
+  for (auto& s : seeds_) s = rng.bits();
+  if (!copies_valid_ || copied_edges_ != state.box.edges()) copy_domains(state);
+  if (++cut_->cycles_done == kCyclesPerCut) cut_.reset();
 
-  half_extent_.resize(n);
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i)
-    half_extent_[i] = state.species[static_cast<std::size_t>(p.species[i])].shape.lab_half_extents(p.orientation(i).toRotationMatrix())[axis];
-
-  for (int k = 0; k < kSlabs; ++k) parts_[static_cast<std::size_t>(k)].slab = Slab{axis, start + k * L / kSlabs, L / kSlabs};
-#pragma omp parallel for num_threads(slab_threads()) schedule(static, 1)
-  for (int k = 0; k < kSlabs; ++k) gather(state, parts_[static_cast<std::size_t>(k)]);
-
-  // The N trials are shared equally between the slabs that have movable bodies, so the threads
-  // finish together; the share does not depend on the configuration beyond which slabs can move,
-  // which no trial changes.
+  // The N trials are shared equally between the domains that have movable bodies, so the threads
+  // finish together; the share does not depend on the configuration beyond which domains can
+  // move, which no trial changes.
   std::int64_t active = 0;
   for (const Part& part : parts_) active += part.movable.empty() ? 0 : 1;
+  for (Part& part : parts_) part.counters.reset(state.species.size());
   if (active == 0) return;  // every particle straddles a cut: nothing moves this cycle
   const auto share = static_cast<std::int64_t>(n) / active, extra = static_cast<std::int64_t>(n) % active;
   const int first = first_active(parts_);
-#pragma omp parallel for num_threads(slab_threads()) schedule(static, 1)
-  for (int k = 0; k < kSlabs; ++k) {
+  const int domains = static_cast<int>(parts_.size());
+#pragma omp parallel for num_threads(domain_threads(parts_.size())) schedule(dynamic, 1)
+  for (int k = 0; k < domains; ++k) {
     Part& part = parts_[static_cast<std::size_t>(k)];
     if (part.movable.empty()) continue;  // nothing to move: no copy to index
-    sweep(state, part, seeds[static_cast<std::size_t>(k)], share + (k == first ? extra : 0), moves, field, removing_overlaps);
+    sweep(state, part, seeds_[static_cast<std::size_t>(k)], share + (k == first ? extra : 0), moves, field, removing_overlaps);
   }
   for (const Part& part : parts_) counters.add_particle_moves(part.counters);
 }
 
+void DomainSweep::restore_cut(const std::optional<Cut>& cut) {
+  cut_ = cut;
+  copies_valid_ = false;
+}
+
+void DomainSweep::copy_domains(const State& state) {
+  const Particles& p = state.particles;
+  const std::size_t n = p.size();
+  const Vec3& L = state.box.edges();
+  half_extent_.resize(n);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i)
+    half_extent_[i] = state.species[static_cast<std::size_t>(p.species[i])].shape.lab_half_extents(p.orientation(i).toRotationMatrix());
+
+  const Layout& count = cut_->count;
+  parts_.resize(static_cast<std::size_t>(domain_count(count)));
+  for (std::size_t d = 0; d < parts_.size(); ++d) {
+    Domain& domain = parts_[d].domain;
+    std::size_t rest = d;
+    for (int k = 0; k < 3; ++k) {
+      const auto m = static_cast<std::size_t>(count[static_cast<std::size_t>(k)]);
+      const double width = L[k] / static_cast<double>(m);
+      domain.cut[static_cast<std::size_t>(k)] = m > 1;
+      domain.along[static_cast<std::size_t>(k)] = Slab{k, cut_->offset[k] * L[k] + static_cast<double>(rest % m) * width, width};
+      rest /= m;
+    }
+  }
+  const int domains = static_cast<int>(parts_.size());
+#pragma omp parallel for num_threads(domain_threads(parts_.size())) schedule(dynamic, 1)
+  for (int k = 0; k < domains; ++k) {
+    Part& part = parts_[static_cast<std::size_t>(k)];
+    gather(state, part);
+    if (part.movable.empty()) continue;  // never swept: no search to build
+    if (part.overlap) part.overlap->rebuild(part.sub);
+    else part.overlap.emplace(part.sub);
+  }
+  copies_valid_ = true;
+  copied_edges_ = L;
+}
+
 void DomainSweep::gather(const State& state, Part& part) const {
   const Particles& p = state.particles;
-  const double L = state.box.edges()[part.slab.axis];
-  // Movable: strictly inside the slab, by a margin far above round-off, so that movable bodies of
-  // different slabs are always apart. Copied: every body that reaches into the slab (a superset
-  // of those a movable body can touch).
-  const double margin = 1e-9 * L;
-  part.inner = Slab{part.slab.axis, part.slab.start + margin, part.slab.width - 2.0 * margin};
-  const Slab& inner = part.inner;
-  const Slab outer{part.slab.axis, part.slab.start - margin, part.slab.width + 2.0 * margin};
+  const Vec3& L = state.box.edges();
+  // Movable: strictly inside the domain, by a margin far above round-off, so that movable bodies
+  // of different domains are always apart. Copied: every body that reaches into the domain (a
+  // superset of those a movable body can touch).
+  part.inner = part.domain;
+  Domain outer = part.domain;
+  for (std::size_t k = 0; k < 3; ++k) {
+    const double margin = 1e-9 * L[static_cast<int>(k)];
+    part.inner.along[k].start += margin;
+    part.inner.along[k].width -= 2.0 * margin;
+    outer.along[k].start -= margin;
+    outer.along[k].width += 2.0 * margin;
+  }
   if (part.sub.species.size() != state.species.size()) part.sub.species = state.species;
   part.sub.box = state.box;
   part.movable.clear();
-  const std::vector<double>& coord = part.slab.axis == 0 ? p.x : part.slab.axis == 1 ? p.y : p.z;
-  // First the bodies that reach into the slab, without a branch: every index is written and
-  // kept when it reaches (about half do, in no predictable order).
+  // First the bodies that reach into the domain, without a branch: every index is written and
+  // kept when it reaches (in no predictable order).
   part.global.resize(p.size());
   std::size_t count = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
     part.global[count] = static_cast<std::int32_t>(i);
-    count += outer.reaches(coord[i], half_extent_[i], L) ? 1 : 0;
+    count += outer.reaches(Vec3(p.x[i], p.y[i], p.z[i]), half_extent_[i], L) ? 1 : 0;
   }
   part.global.resize(count);
   for (std::size_t k = 0; k < count; ++k) {
     const auto i = static_cast<std::size_t>(part.global[k]);
-    if (inner.holds(coord[i], half_extent_[i], L)) part.movable.push_back(static_cast<std::int32_t>(k));
+    if (part.inner.holds(Vec3(p.x[i], p.y[i], p.z[i]), half_extent_[i], L)) part.movable.push_back(static_cast<std::int32_t>(k));
   }
   part.sub.particles.assign_subset(p, part.global);
-  part.counters.reset(state.species.size());
 }
 
 void DomainSweep::sweep(State& state, Part& part, std::uint64_t seed, std::int64_t trials, const MoveSizes& moves,
                         const OrientationalField& field, bool removing_overlaps) {
-  if (part.overlap) part.overlap->rebuild(part.sub);
-  else part.overlap.emplace(part.sub);
   Rng rng(seed, kSlabStream);
   // Moves must keep a body movable by the same test that chose it: a move and its reverse then
   // see the same movable set.
   const TrialMove move{part.sub, *part.overlap, rng, part.counters, moves, field, removing_overlaps, &part.inner};
   const std::uint64_t n = part.movable.size();
   for (std::int64_t t = 0; t < trials; ++t) move.attempt(part.movable[rng.index(n)]);
-  // Only movable particles changed; they belong to this slab alone.
+  // Only movable particles changed; they belong to this domain alone.
   Particles& to = state.particles;
   const Particles& from = part.sub.particles;
   for (const std::int32_t s : part.movable) {
@@ -120,9 +210,9 @@ void DomainSweep::sweep(State& state, Part& part, std::uint64_t seed, std::int64
   }
 }
 
-std::array<std::size_t, DomainSweep::kSlabs> DomainSweep::last_movable() const {
-  std::array<std::size_t, kSlabs> m{};
-  for (int k = 0; k < kSlabs; ++k) m[static_cast<std::size_t>(k)] = parts_[static_cast<std::size_t>(k)].movable.size();
+std::vector<std::size_t> DomainSweep::last_movable() const {
+  std::vector<std::size_t> m;
+  for (const Part& part : parts_) m.push_back(part.movable.size());
   return m;
 }
 

@@ -58,6 +58,10 @@ void McEngine::rebuild_overlap() {
   overlap_stale_ = false;
 }
 
+void McEngine::box_rescaled() {
+  if (domains_) domains_->invalidate();
+}
+
 void McEngine::positions_rescaled() {
   // Domain sweeps search copies of their slabs, so the whole configuration's structures are
   // needed only by the next compression's overlap check (or a caller of overlap()): rebuild them
@@ -97,6 +101,7 @@ void McEngine::rescale_allowing_overlaps(double volume) {
   rescale_positions(new_edges.cwiseQuotient(old_edges));
   state_.box.set_edges(new_edges);
   positions_rescaled();
+  box_rescaled();
 }
 
 void McEngine::rescale_positions(const Vec3& factor) {
@@ -153,6 +158,7 @@ void McEngine::volume_move() {
   } else if (any_overlap_after_rescale(new_edges)) {
     return;
   }
+  box_rescaled();
   counters_.volume_accepted++;
 }
 
@@ -164,9 +170,12 @@ bool McEngine::try_rescale(double volume) {
     rescale_positions(new_edges.cwiseQuotient(old_edges));
     state_.box.set_edges(new_edges);
     positions_rescaled();
+    box_rescaled();
     return true;
   }
-  return !any_overlap_after_rescale(new_edges);
+  if (any_overlap_after_rescale(new_edges)) return false;
+  box_rescaled();
+  return true;
 }
 
 void McEngine::tune(double target, const MoveCounters& w) {

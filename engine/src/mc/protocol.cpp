@@ -323,6 +323,30 @@ nlohmann::json counters_to_json(const MoveCounters& c) {
           {"rotate_tried", c.rotate_tried},       {"rotate_accepted", c.rotate_accepted},
           {"volume_tried", c.volume_tried},       {"volume_accepted", c.volume_accepted}};
 }
+/// The domain sweeps' layout (null: slabs along random axes; absent: not chosen yet) and the cut
+/// in use (null between cuts).
+nlohmann::json domains_to_json(const DomainSweep& d) {
+  nlohmann::json j = nlohmann::json::object();
+  if (d.layout_chosen()) j["layout"] = d.layout() ? nlohmann::json(*d.layout()) : nlohmann::json(nullptr);
+  const auto& cut = d.cut();
+  j["cut"] = cut ? nlohmann::json{{"count", cut->count},
+                                  {"offset", {cut->offset.x(), cut->offset.y(), cut->offset.z()}},
+                                  {"cycles_done", cut->cycles_done}}
+                 : nlohmann::json(nullptr);
+  return j;
+}
+void domains_from_json(const nlohmann::json& j, DomainSweep& d) {
+  if (j.contains("layout"))
+    d.set_layout(j.at("layout").is_null() ? std::nullopt : std::optional<DomainSweep::Layout>(j.at("layout").get<DomainSweep::Layout>()));
+  const auto& c = j.at("cut");
+  if (c.is_null()) return d.restore_cut(std::nullopt);
+  DomainSweep::Cut cut;
+  cut.count = c.at("count").get<DomainSweep::Layout>();
+  const auto offset = c.at("offset").get<std::array<double, 3>>();
+  cut.offset = Vec3(offset[0], offset[1], offset[2]);
+  cut.cycles_done = c.at("cycles_done").get<int>();
+  d.restore_cut(cut);
+}
 MoveCounters counters_from_json(const nlohmann::json& j) {
   MoveCounters c;
   j.at("translate_tried").get_to(c.translate_tried);
@@ -343,6 +367,7 @@ nlohmann::json McRunner::checkpoint_state() const {
                       {"quick_step", cursor_.quick_step}}},
           {"rng", {{"seed", r.seed}, {"stream", r.stream}, {"counter", r.counter}, {"used", r.used}}},
           {"counters", counters_to_json(engine_.counters())},
+          {"domain_sweeps", engine_.domain_sweep() ? domains_to_json(*engine_.domain_sweep()) : nlohmann::json(nullptr)},
           {"tune_mark", counters_to_json(tune_mark_)},
           {"sample_mark", counters_to_json(sample_mark_)},
           {"move_sizes", {{"translate", m.translate}, {"rotate", m.rotate}, {"log_volume", m.log_volume}}},
@@ -365,6 +390,10 @@ void McRunner::restore(const nlohmann::json& js) {
   js.at("move_sizes").at("rotate").get_to(m.rotate);
   m.log_volume = js.at("move_sizes").at("log_volume").get<double>();
   engine_.restore(rng, counters_from_json(js.at("counters")), m);
+  // Checkpoints written before domain sweeps kept a cut for several cycles have none: the next
+  // cycle starts a new cut.
+  if (DomainSweep* d = engine_.domain_sweep(); d && js.contains("domain_sweeps") && !js.at("domain_sweeps").is_null())
+    domains_from_json(js.at("domain_sweeps"), *d);
   tune_mark_ = counters_from_json(js.at("tune_mark"));
   sample_mark_ = counters_from_json(js.at("sample_mark"));
   summary_ = js.at("summary");

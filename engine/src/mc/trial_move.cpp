@@ -47,7 +47,7 @@ void TrialMove::attempt(std::int32_t i) const {
     Int3 image = p.image(ui);
     state.box.wrap(r, image);
     counters.translate_tried[us]++;
-    if (slab && leaves_slab(s, r, rot)) return;
+    if (domain && leaves_domain(s, r, rot)) return;
     if (blocked(i, r, rot, p.position(ui), rot)) return;
     p.set_position(ui, r);
     p.set_image(ui, image);
@@ -67,7 +67,7 @@ void TrialMove::attempt(std::int32_t i) const {
     if (dU > 0.0 && rng.uniform() >= std::exp(-dU)) return;
   }
   const Vec3 r = p.position(ui);
-  if (slab && leaves_slab(s, r, new_rot)) return;
+  if (domain && leaves_domain(s, r, new_rot)) return;
   if (blocked(i, r, new_rot, r, rot)) return;
   p.set_orientation(ui, q);
   overlap.moved(i, r, new_rot);
@@ -83,9 +83,8 @@ bool TrialMove::blocked(std::int32_t i, const Vec3& r_new, const Mat3& rot_new, 
   return overlap.count_overlaps(i, r_new, rot_new) >= before;
 }
 
-bool TrialMove::leaves_slab(int species, const Vec3& r, const Mat3& rot) const {
-  const double h = state.species[static_cast<std::size_t>(species)].shape.lab_half_extents(rot)[slab->axis];
-  return !slab->holds(r[slab->axis], h, state.box.edges()[slab->axis]);
+bool TrialMove::leaves_domain(int species, const Vec3& r, const Mat3& rot) const {
+  return !domain->holds(r, state.species[static_cast<std::size_t>(species)].shape.lab_half_extents(rot), state.box.edges());
 }
 
 }  // namespace anisodyn

@@ -58,7 +58,12 @@ void SpeciesGrid::configure(const Box& box, double self_cutoff, std::size_t coun
   }
   const double mean_occupancy = static_cast<double>(count) / n_.cast<double>().prod();
   capacity_ = std::max<std::size_t>(4, static_cast<std::size_t>(std::ceil(3.0 * mean_occupancy)));
-  clear();
+}
+
+void SpeciesGrid::leave_empty() {
+  count_.clear();
+  pos_.clear();
+  sid_.clear();
 }
 
 void SpeciesGrid::clear() {
@@ -133,21 +138,39 @@ void SpeciesGrid::grow_capacity() {
 void CellList::build(const Box& box, const std::vector<double>& x, const std::vector<double>& y,
                      const std::vector<double>& z, const std::vector<std::int32_t>& species,
                      const std::vector<double>& self_cutoffs, const std::vector<std::size_t>& expected_counts) {
+  configure(box, species, self_cutoffs, expected_counts);
+  fill(x, y, z, std::vector<char>(self_cutoffs.size(), 1));
+}
+
+void CellList::configure(const Box& box, const std::vector<std::int32_t>& species, const std::vector<double>& self_cutoffs,
+                         const std::vector<std::size_t>& expected_counts) {
   box_ = box;
   species_ = species;
-  grids_.resize(self_cutoffs.size());  // configure() resets each grid, reusing its memory
+  grids_.resize(self_cutoffs.size());  // fill() resets each grid, reusing its memory
   std::vector<std::size_t> counts(self_cutoffs.size(), 0);
   for (auto s : species) counts[static_cast<std::size_t>(s)]++;
   for (std::size_t s = 0; s < expected_counts.size() && s < counts.size(); ++s) counts[s] = std::max(counts[s], expected_counts[s]);
   for (std::size_t s = 0; s < grids_.size(); ++s) grids_[s].configure(box, self_cutoffs[s], counts[s]);
-  for (std::size_t i = 0; i < x.size(); ++i)
-    grids_[static_cast<std::size_t>(species[i])].insert(static_cast<std::int32_t>(i), Vec3(x[i], y[i], z[i]));
+  filled_.assign(grids_.size(), 0);
+}
+
+void CellList::fill(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& z,
+                    const std::vector<char>& filled) {
+  filled_ = filled;
+  for (std::size_t s = 0; s < grids_.size(); ++s) {
+    if (filled_[s]) grids_[s].clear();
+    else grids_[s].leave_empty();
+  }
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const auto s = static_cast<std::size_t>(species_[i]);
+    if (filled_[s]) grids_[s].insert(static_cast<std::int32_t>(i), Vec3(x[i], y[i], z[i]));
+  }
 }
 
 void CellList::insert(std::int32_t particle, int species, const Vec3& r) {
   if (species_.size() <= static_cast<std::size_t>(particle)) species_.resize(static_cast<std::size_t>(particle) + 1, -1);
   species_[static_cast<std::size_t>(particle)] = species;
-  grids_[static_cast<std::size_t>(species)].insert(particle, r);
+  if (filled(species)) grids_[static_cast<std::size_t>(species)].insert(particle, r);
 }
 
 }  // namespace anisodyn

@@ -100,6 +100,8 @@ class HardOverlap {
   static constexpr double kTreeAdvantage = 50.0;
   void build_trees();
   void rebuild_tree(int b);
+  /// Per species: whether some search reads its cell grid (after choose_searches).
+  std::vector<char> grids_read() const;
   bool tree_needed(int b) const { return tree_needed_[static_cast<std::size_t>(b)] != 0; }
   /// Lab box half-widths of a body of species a with rotation rot, padded so that round-off can
   /// only add candidates.

@@ -29,8 +29,8 @@ class McEngine {
   void set_pressure(std::optional<double> beta_pressure, BoxMoves moves = BoxMoves::Isotropic);
 
   /// One cycle: N particle trial moves, plus on average one volume move under NPT. With domain
-  /// sweeps, the particle moves are one DomainSweep cycle (two slabs, two threads) followed, under
-  /// NPT, by one volume move.
+  /// sweeps, the particle moves are one DomainSweep cycle (two slabs, or a grid of domains for
+  /// large systems, on all threads) followed, under NPT, by one volume move. Changes made to the state behind the engine's back are not seen.
   void cycle();
   /// Domain sweeps on or off (off: the sequential random choice, the default). Preparation only:
   /// the trajectory differs from the sequential one, the distribution sampled does not.
@@ -52,8 +52,12 @@ class McEngine {
 
   MoveSizes& move_sizes() { return moves_; }
   const MoveSizes& move_sizes() const { return moves_; }
-  /// Restores what a checkpoint saved, so the run continues bit-for-bit.
+  /// Restores what a checkpoint saved, so the run continues bit-for-bit (domain sweeps restore
+  /// their layout and cut through domain_sweep()).
   void restore(const RngState& rng, const MoveCounters& counters, const MoveSizes& moves);
+  /// The domain sweeps (null without), for their checkpoint and their layout.
+  DomainSweep* domain_sweep() { return domains_.get(); }
+  const DomainSweep* domain_sweep() const { return domains_.get(); }
   /// Cumulative counters since construction.
   const MoveCounters& counters() const { return counters_; }
   const RngState& rng_state() const { return rng_.state(); }
@@ -71,6 +75,8 @@ class McEngine {
   /// Brings the neighbour structures up to date after domain sweeps moved particles behind them.
   void refresh_overlap();
   void rebuild_overlap();
+  /// A rescaled box was kept: the domain sweeps' slab copies are out of date.
+  void box_rescaled();
   /// After every position was rescaled (or restored): rebuilds the overlap search now or marks it
   /// stale (domain sweeps).
   void positions_rescaled();

@@ -3,7 +3,8 @@
 // anisotropic particles with probability 1/2, a body-frame rotation, rejected on overlap (or, during
 // quick compression's overlap removal, unless it lowers the particle's overlap count). Shared by
 // the sequential sweep of McEngine and the domain sweeps of DomainSweep, which run it on a part of
-// the configuration with the particle held inside a slab.
+// the configuration with the particle held inside a domain.
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -63,7 +64,28 @@ struct Slab {
   }
 };
 
-/// Everything one trial touches. `slab`, when set, rejects moves that take the body out of it.
+/// A domain of a domain sweep: the intersection of slabs along the axes that are cut (an axis not
+/// cut spans the periodic box). Bodies inside two disjoint domains are apart along some cut axis,
+/// so they cannot overlap.
+struct Domain {
+  std::array<Slab, 3> along{};  // along[k] counts only where cut[k]
+  std::array<bool, 3> cut{};
+
+  /// Whether the lab box [c − h, c + h] lies inside along every cut axis.
+  bool holds(const Vec3& c, const Vec3& h, const Vec3& L) const {
+    bool inside = true;
+    for (int k = 0; k < 3; ++k) inside = inside && (!cut[k] || along[k].holds(c[k], h[k], L[k]));
+    return inside;
+  }
+  /// Whether the lab box meets the domain (or one of its periodic images).
+  bool reaches(const Vec3& c, const Vec3& h, const Vec3& L) const {
+    bool meets = true;
+    for (int k = 0; k < 3; ++k) meets &= !cut[k] || along[k].reaches(c[k], h[k], L[k]);
+    return meets;
+  }
+};
+
+/// Everything one trial touches. `domain`, when set, rejects moves that take the body out of it.
 struct TrialMove {
   State& state;
   HardOverlap& overlap;
@@ -72,14 +94,14 @@ struct TrialMove {
   const MoveSizes& moves;
   const OrientationalField& field;
   bool removing_overlaps = false;
-  const Slab* slab = nullptr;
+  const Domain* domain = nullptr;
 
   void attempt(std::int32_t i) const;
 
  private:
   /// Whether the hard cores forbid moving particle i from (r_old, rot_old) to (r_new, rot_new).
   bool blocked(std::int32_t i, const Vec3& r_new, const Mat3& rot_new, const Vec3& r_old, const Mat3& rot_old) const;
-  bool leaves_slab(int species, const Vec3& r, const Mat3& rot) const;
+  bool leaves_domain(int species, const Vec3& r, const Mat3& rot) const;
 };
 
 }  // namespace anisodyn

@@ -43,9 +43,13 @@ const std::vector<StencilCell>& stencil_order(int sx, int sy, int sz);
 
 class SpeciesGrid {
  public:
-  /// Chooses the grid for `count` particles whose largest mutual cut-off is `self_cutoff`.
+  /// Chooses the grid for `count` particles whose largest mutual cut-off is `self_cutoff`
+  /// (geometry only: clear() makes it ready for insertions).
   void configure(const Box& box, double self_cutoff, std::size_t count);
   void clear();
+  /// Frees nothing but holds no cells: the grid must not be visited, inserted into or moved in
+  /// until clear(). For a species whose partners come from another search.
+  void leave_empty();
   void insert(std::int32_t particle, const Vec3& r);
   void remove(std::int32_t particle);
   /// Moves a particle already in the grid (call after an accepted move).
@@ -139,6 +143,15 @@ class CellList {
   void build(const Box& box, const std::vector<double>& x, const std::vector<double>& y,
              const std::vector<double>& z, const std::vector<std::int32_t>& species,
              const std::vector<double>& self_cutoffs, const std::vector<std::size_t>& expected_counts = {});
+  /// build() in two steps: the grids' geometry (grid(s) answers scans_all_cells and
+  /// query_volume) ...
+  void configure(const Box& box, const std::vector<std::int32_t>& species, const std::vector<double>& self_cutoffs,
+                 const std::vector<std::size_t>& expected_counts = {});
+  /// ... then the particles of the species with filled[s] placed; the other grids stay empty (see
+  /// SpeciesGrid::leave_empty) and filled(s) says so.
+  void fill(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& z,
+            const std::vector<char>& filled);
+  bool filled(int species) const { return filled_[static_cast<std::size_t>(species)] != 0; }
   /// Adds particle `particle` of `species` (its index must be the next unused one).
   void insert(std::int32_t particle, int species, const Vec3& r);
   void move(std::int32_t particle, const Vec3& r) { grids_[species_[particle]].move(particle, r); }
@@ -154,6 +167,7 @@ class CellList {
   Box box_;
   std::vector<SpeciesGrid> grids_;
   std::vector<std::int32_t> species_;
+  std::vector<char> filled_;
 };
 
 // ---- inline implementation of the hot loop ----------------------------------------------------
