@@ -107,7 +107,7 @@ void DomainSweep::cycle(State& state, Rng& rng, const MoveSizes& moves, const Or
   const auto share = static_cast<std::int64_t>(n) / active, extra = static_cast<std::int64_t>(n) % active;
   const int first = first_active(parts_);
   const int domains = static_cast<int>(parts_.size());
-#pragma omp parallel for num_threads(domain_threads(parts_.size())) schedule(dynamic, 1)
+#pragma omp parallel for num_threads(domain_threads(parts_.size())) schedule(static)
   for (int k = 0; k < domains; ++k) {
     Part& part = parts_[static_cast<std::size_t>(k)];
     if (part.movable.empty()) continue;  // nothing to move: no copy to index
@@ -144,7 +144,7 @@ void DomainSweep::copy_domains(const State& state) {
     }
   }
   const int domains = static_cast<int>(parts_.size());
-#pragma omp parallel for num_threads(domain_threads(parts_.size())) schedule(dynamic, 1)
+#pragma omp parallel for num_threads(domain_threads(parts_.size())) schedule(static)
   for (int k = 0; k < domains; ++k) {
     Part& part = parts_[static_cast<std::size_t>(k)];
     gather(state, part);
