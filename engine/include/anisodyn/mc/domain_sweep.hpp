@@ -8,7 +8,7 @@
 // many threads as there are, each against its own copy of the particles that reach into it.
 //
 // Why this samples the hard-particle distribution: the cuts, and when they change, do not depend on
-// the configuration; within a slab, picking one of its n movable particles and a move that keeps
+// the configuration; within a domain, picking one of its n movable particles and a move that keeps
 // it inside is symmetric (a move and its reverse see the same n), so every trial obeys detailed
 // balance; and the number of trials per slab (N shared equally between the slabs that have
 // movable bodies: balanced threads) is unchanged by the trials. A volume move between two cycles
@@ -24,7 +24,8 @@
 // Why a grid for large systems: a trial of the sequential sweep finds its particle, tree path and
 // partners cold once the configuration outgrows the core's cache (32000 rods: 0.4 of the speed at
 // 2000). A domain's copy of about kParticlesPerDomain particles and its trees stay in cache while
-// its trials run, so the cost per trial no longer grows with N.
+// its trials run: from 16000 to 54000 rods the cost per trial stays the same, 15–20% above that of
+// 2000 rods in two slabs, whose copies stay in cache from cycle to cycle (docs/performance.md).
 //
 // The domain count is fixed by the cut and each domain draws from its own stream, seeded every
 // cycle from the engine's generator: the result is the same bits on any thread count.
@@ -40,8 +41,9 @@ namespace anisodyn {
 class DomainSweep {
  public:
   static constexpr int kCyclesPerCut = 8;
-  /// Particles per domain the automatic grid aims at: a copy this size and its trees (about
-  /// 0.5 MB for rods) fit a core's L2 cache.
+  /// Particles per domain the automatic grid aims at: a copy this size and its trees (an estimated
+  /// 0.3 MB for rods) fit a core's L2 cache. 250 was no faster on 54000 rods and freezes more
+  /// straddling particles per cut.
   static constexpr std::size_t kParticlesPerDomain = 1000;
   /// Below this many particles, two slabs along a random axis per cut.
   static constexpr std::size_t kGridFrom = 4000;

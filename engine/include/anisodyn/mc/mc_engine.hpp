@@ -30,7 +30,8 @@ class McEngine {
 
   /// One cycle: N particle trial moves, plus on average one volume move under NPT. With domain
   /// sweeps, the particle moves are one DomainSweep cycle (two slabs, or a grid of domains for
-  /// large systems, on all threads) followed, under NPT, by one volume move. Changes made to the state behind the engine's back are not seen.
+  /// large systems, on all threads) followed, under NPT, by one volume move. The engine does not
+  /// see changes made to the state behind its back.
   void cycle();
   /// Domain sweeps on or off (off: the sequential random choice, the default). Preparation only:
   /// the trajectory differs from the sequential one, the distribution sampled does not.
