@@ -210,10 +210,4 @@ void DomainSweep::sweep(State& state, Part& part, std::uint64_t seed, std::int64
   }
 }
 
-std::vector<std::size_t> DomainSweep::last_movable() const {
-  std::vector<std::size_t> m;
-  for (const Part& part : parts_) m.push_back(part.movable.size());
-  return m;
-}
-
 }  // namespace anisodyn

@@ -87,9 +87,6 @@ class DomainSweep {
   /// ... and back: the next cycles continue it, so a resumed run repeats the uninterrupted one.
   void restore_cut(const std::optional<Cut>& cut);
 
-  /// Movable particles of the last cycle, per domain (for tests and progress).
-  std::vector<std::size_t> last_movable() const;
-
  private:
   /// A domain's own copy of the particles that reach into it.
   struct Part {
