@@ -5,6 +5,8 @@
 //   - the automatic layout cuts large systems only where domains stay wide next to the particles;
 //   - a cut restored from a checkpoint in the middle of its cycles continues the run bit for bit;
 //   - an ideal gas of rods keeps isotropic orientations, although movability depends on them;
+//   - interacting boards in slabs about one board long keep the orientational correlations of the
+//     sequential sweep (a movability test that broke detailed balance fails this);
 //   - the sampled distribution is the hard-particle one: two hard spheres' separation against its
 //     exact law and hard spheres' NPT packing fraction, with slabs and with a grid, against the
 //     sequential sweep's (the ideal gas's NPT volume against (N + 1)/βP is in test_mc_engine).
@@ -224,6 +226,57 @@ TEST(DomainSweep, AnIdealGasOfRodsStaysIsotropic) {
     std::printf("<u_%d^2> = %.5f ± %.5f\n", k, m.mean, m.error);
     EXPECT_NEAR(m.mean, 1.0 / 3.0, 4.0 * m.error);
   }
+}
+
+namespace {
+
+/// Σ_{i<j} P2(u_i · u_j) / N over the long axes u: zero on average for independent orientations,
+/// and what the finite-size order parameter U_L measures in an isotropic fluid.
+double long_axis_pair_order(const State& s) {
+  const Particles& p = s.particles;
+  std::vector<Vec3> u(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) u[i] = p.orientation(i) * Vec3::UnitZ();
+  double sum = 0.0;
+  for (std::size_t i = 0; i < u.size(); ++i)
+    for (std::size_t j = i + 1; j < u.size(); ++j) {
+      const double c = u[i].dot(u[j]);
+      sum += 1.5 * c * c - 0.5;
+    }
+  return sum / static_cast<double>(p.size());
+}
+
+}  // namespace
+
+TEST(DomainSweep, BoardsInSlabsOneBoardWideKeepTheSequentialOrientationalCorrelations) {
+  // 27 boards 12×3.46×1 at η = 0.07 in a box of 25.2: each slab (12.6) is about one board long, so
+  // which boards may move depends strongly on their orientation. A deliberately broken build that
+  // let a board move when only its centre was inside (while its moves had to keep its whole lab box
+  // inside) failed here: 0.1018 ± 0.0056 against the sequential 0.0693 ± 0.0030 (5.1 errors).
+  const ScopedThreadCount one_thread(1);
+  const Species board{"board", Shape::cuboid(1.0, 3.46, 12.0), 1.0, {}, {}};
+  Rng rng(6, 0);
+  const State start = lattice_of(board, 27, 0.07, rng);
+  auto pair_order = [&](bool domains) {
+    State s = start;
+    McEngine mc(s, RngState{31, 0, 0, 4});
+    mc.set_domain_sweeps(domains);
+    mc.move_sizes().translate[0] = 1.5;
+    mc.move_sizes().rotate[0] = 0.4;
+    for (int c = 0; c < 5000; ++c) mc.cycle();  // the lattice starts aligned
+    std::vector<double> order;
+    for (int c = 0; c < 600000; ++c) {
+      mc.cycle();
+      order.push_back(long_axis_pair_order(s));
+    }
+    return block_average(order);
+  };
+  const MeanError sequential = pair_order(false), domains = pair_order(true);
+  std::printf("pair order: sequential %.4f ± %.4f, domains %.4f ± %.4f\n", sequential.mean, sequential.error, domains.mean,
+              domains.error);
+  const double error = std::hypot(sequential.error, domains.error);
+  EXPECT_NEAR(domains.mean, sequential.mean, 4.0 * error);
+  EXPECT_LT(error, 0.0075);                            // resolves a shift of 0.03 by 4 errors
+  EXPECT_GT(sequential.mean, 4.0 * sequential.error);  // the boards do correlate
 }
 
 TEST(DomainSweep, HardSpheresNptPackingFractionMatchesTheSequentialSweep) {

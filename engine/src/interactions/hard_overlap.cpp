@@ -7,6 +7,7 @@
 
 #include "anisodyn/core/error.hpp"
 #include "anisodyn/geometry/overlap.hpp"
+#include "anisodyn/system/lab_extents.hpp"
 
 namespace anisodyn {
 
@@ -42,7 +43,6 @@ HardOverlap::HardOverlap(const State& state, const std::vector<std::size_t>& exp
   rebuild(state);
 }
 
-
 void HardOverlap::rebuild(const State& state) {
   state_ = &state;
   const Particles& p = state.particles;
@@ -71,7 +71,7 @@ std::vector<char> HardOverlap::grids_read() const {
 
 void HardOverlap::choose_searches() {
   const auto ns = static_cast<std::size_t>(nspecies_);
-  const std::vector<Vec3> h = mean_lab_half_extents();
+  const std::vector<Vec3> h = mean_lab_half_extents(*state_);
   tree_pair_.assign(ns * ns, 0);
   for (int a = 0; a < nspecies_; ++a)
     for (int b = 0; b < nspecies_; ++b) {
@@ -83,20 +83,6 @@ void HardOverlap::choose_searches() {
       tree_pair_[static_cast<std::size_t>(a * nspecies_ + b)] = tree;
     }
   build_trees();
-}
-
-std::vector<Vec3> HardOverlap::mean_lab_half_extents() const {
-  const Particles& p = state_->particles;
-  std::vector<Vec3> sum(static_cast<std::size_t>(nspecies_), Vec3::Zero());
-  std::vector<double> count(static_cast<std::size_t>(nspecies_), 0.0);
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const auto s = static_cast<std::size_t>(p.species[i]);
-    sum[s] += state_->species[s].shape.lab_half_extents(rot_[i]);
-    count[s] += 1.0;
-  }
-  for (std::size_t s = 0; s < sum.size(); ++s)  // no particles yet: the bounding sphere
-    sum[s] = count[s] > 0.0 ? Vec3(sum[s] / count[s]) : Vec3::Constant(state_->species[s].shape.circumradius());
-  return sum;
 }
 
 Vec3 HardOverlap::bounding_half_extents(int a, const Mat3& rot) const {

@@ -7,6 +7,8 @@
 #include <omp.h>
 #endif
 
+#include "anisodyn/system/lab_extents.hpp"
+
 namespace anisodyn {
 
 namespace {
@@ -41,9 +43,10 @@ std::optional<DomainSweep::Layout> DomainSweep::automatic_layout(const State& st
   const Particles& p = state.particles;
   if (p.size() < kGridFrom) return std::nullopt;
   const std::size_t wanted = p.size() / kParticlesPerDomain;
+  // The mean lab extent over all particles: the species' means weighted by their counts.
+  const std::vector<Vec3> species_half = mean_lab_half_extents(state);
   Vec3 extent = Vec3::Zero();
-  for (std::size_t i = 0; i < p.size(); ++i)
-    extent += 2.0 * state.species[static_cast<std::size_t>(p.species[i])].shape.lab_half_extents(p.orientation(i).toRotationMatrix());
+  for (std::size_t i = 0; i < p.size(); ++i) extent += 2.0 * species_half[static_cast<std::size_t>(p.species[i])];
   extent /= static_cast<double>(p.size());
   const Vec3& L = state.box.edges();
   Layout count{1, 1, 1};
@@ -142,12 +145,14 @@ void DomainSweep::copy_domains(const State& state) {
       domain.along[static_cast<std::size_t>(k)] = Slab{k, cut_->offset[k] * L[k] + static_cast<double>(rest % m) * width, width};
       rest /= m;
     }
+    set_bounds(parts_[d], L);
   }
+  bin_particles(state);
   const int domains = static_cast<int>(parts_.size());
 #pragma omp parallel for num_threads(domain_threads(parts_.size())) schedule(static)
   for (int k = 0; k < domains; ++k) {
     Part& part = parts_[static_cast<std::size_t>(k)];
-    gather(state, part);
+    copy_part(state, part);
     if (part.movable.empty()) continue;  // never swept: no search to build
     if (part.overlap) part.overlap->rebuild(part.sub);
     else part.overlap.emplace(part.sub);
@@ -156,34 +161,70 @@ void DomainSweep::copy_domains(const State& state) {
   copied_edges_ = L;
 }
 
-void DomainSweep::gather(const State& state, Part& part) const {
-  const Particles& p = state.particles;
-  const Vec3& L = state.box.edges();
+void DomainSweep::set_bounds(Part& part, const Vec3& L) {
   // Movable: strictly inside the domain, by a margin far above round-off, so that movable bodies
   // of different domains are always apart. Copied: every body that reaches into the domain (a
   // superset of those a movable body can touch).
-  part.inner = part.domain;
-  Domain outer = part.domain;
+  part.inner = part.outer = part.domain;
   for (std::size_t k = 0; k < 3; ++k) {
     const double margin = 1e-9 * L[static_cast<int>(k)];
     part.inner.along[k].start += margin;
     part.inner.along[k].width -= 2.0 * margin;
-    outer.along[k].start -= margin;
-    outer.along[k].width += 2.0 * margin;
+    part.outer.along[k].start -= margin;
+    part.outer.along[k].width += 2.0 * margin;
   }
+}
+
+void DomainSweep::bin_particles(const State& state) {
+  // One pass over the particles: each is listed, in index order, by the few domains its lab box
+  // reaches (found per axis from its position, confirmed by the domains' own test).
+  const Particles& p = state.particles;
+  const Vec3& L = state.box.edges();
+  const Layout& count = cut_->count;
+  for (Part& part : parts_) part.global.clear();
+  std::array<std::vector<int>, 3> reached;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Vec3 c(p.x[i], p.y[i], p.z[i]);
+    for (int k = 0; k < 3; ++k) {
+      const auto uk = static_cast<std::size_t>(k);
+      reached_along(k, count[uk], c[k], half_extent_[i][k], L[k], reached[uk]);
+    }
+    for (const int a : reached[0])
+      for (const int b : reached[1])
+        for (const int e : reached[2])
+          parts_[static_cast<std::size_t>(a + count[0] * (b + count[1] * e))].global.push_back(static_cast<std::int32_t>(i));
+  }
+}
+
+void DomainSweep::reached_along(int axis, int m, double c, double h, double L, std::vector<int>& out) const {
+  out.clear();
+  if (m == 1) {
+    out.push_back(0);
+    return;
+  }
+  // Domain j along the axis starts at the first domain's start plus j widths; the interval's ends,
+  // measured from there, bound the indices it can meet (one more on each side covers round-off).
+  const auto ua = static_cast<std::size_t>(axis);
+  const Part& first = parts_.front();
+  const double start = first.domain.along[ua].start, width = L / m;
+  double u = c - start;
+  u -= L * std::floor(u / L);
+  const auto lo = static_cast<int>(std::floor((u - h) / width)) - 1, hi = static_cast<int>(std::floor((u + h) / width)) + 1;
+  const int stride = ua == 0 ? 1 : ua == 1 ? cut_->count[0] : cut_->count[0] * cut_->count[1];
+  const int from = hi - lo + 1 >= m ? 0 : lo, to = hi - lo + 1 >= m ? m - 1 : hi;
+  for (int t = from; t <= to; ++t) {
+    const int j = ((t % m) + m) % m;
+    if (parts_[static_cast<std::size_t>(j * stride)].outer.along[ua].reaches(c, h, L)) out.push_back(j);
+  }
+}
+
+void DomainSweep::copy_part(const State& state, Part& part) const {
+  const Particles& p = state.particles;
+  const Vec3& L = state.box.edges();
   if (part.sub.species.size() != state.species.size()) part.sub.species = state.species;
   part.sub.box = state.box;
   part.movable.clear();
-  // First the bodies that reach into the domain, without a branch: every index is written and
-  // kept when it reaches (in no predictable order).
-  part.global.resize(p.size());
-  std::size_t count = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    part.global[count] = static_cast<std::int32_t>(i);
-    count += outer.reaches(Vec3(p.x[i], p.y[i], p.z[i]), half_extent_[i], L) ? 1 : 0;
-  }
-  part.global.resize(count);
-  for (std::size_t k = 0; k < count; ++k) {
+  for (std::size_t k = 0; k < part.global.size(); ++k) {
     const auto i = static_cast<std::size_t>(part.global[k]);
     if (part.inner.holds(Vec3(p.x[i], p.y[i], p.z[i]), half_extent_[i], L)) part.movable.push_back(static_cast<std::int32_t>(k));
   }

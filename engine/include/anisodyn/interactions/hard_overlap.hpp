@@ -89,8 +89,6 @@ class HardOverlap {
   /// Chooses grid or tree per species pair and builds the trees needed: the tree where the grid
   /// would visit every cell, or a volume kTreeAdvantage times what the tree's box test keeps.
   void choose_searches();
-  /// Per species: the mean lab-box half-extents of its particles (its circumradius if it has none).
-  std::vector<Vec3> mean_lab_half_extents() const;
   /// A tree candidate costs more than a grid candidate (a node walk against a vectorised
   /// distance pass): the grid keeps pairs whose searched volume is within this factor of the
   /// tree's. Measured (bench/mc_throughput.cpp, docs/performance.md): at a volume ratio of 3.6

@@ -92,6 +92,7 @@ class DomainSweep {
   struct Part {
     Domain domain;  // the cut
     Domain inner;   // the cut less a margin far above round-off: where movable bodies stay
+    Domain outer;   // the cut plus that margin: the bodies that reach into it are copied
     State sub;
     std::optional<HardOverlap> overlap;
     std::vector<std::int32_t> global;   // sub index → index in the full state
@@ -101,7 +102,13 @@ class DomainSweep {
   Cut draw_cut(Rng& rng) const;
   /// Copies every domain of the current cut and builds its neighbour search.
   void copy_domains(const State& state);
-  void gather(const State& state, Part& part) const;
+  static void set_bounds(Part& part, const Vec3& L);
+  /// Lists in each part's `global` the particles whose lab boxes reach into its domain.
+  void bin_particles(const State& state);
+  /// The indices j < m of the domains along `axis` that the interval [c − h, c + h] reaches.
+  void reached_along(int axis, int m, double c, double h, double L, std::vector<int>& out) const;
+  /// The part's copy of its listed particles, and which of them are movable.
+  void copy_part(const State& state, Part& part) const;
   void sweep(State& state, Part& part, std::uint64_t seed, std::int64_t trials, const MoveSizes& moves,
              const OrientationalField& field, bool removing_overlaps);
 

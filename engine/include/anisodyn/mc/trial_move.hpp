@@ -52,7 +52,7 @@ struct Slab {
   /// Whether that interval meets the slab (or one of its periodic images).
   bool reaches(double c, double h, double L) const {
     const double u = offset(c, L);
-    return (u - h <= width) | (u + h >= L);  // both sides evaluated: no branch in gather loops
+    return (u - h <= width) | (u + h >= L);  // both sides evaluated, without a branch
   }
 
  private:
