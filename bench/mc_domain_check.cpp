@@ -1,0 +1,126 @@
+// Domain sweeps against the sequential sweep on a large isotropic system (issue 18), two checks
+// that the unit tests are too small to make:
+//
+//   bench_mc_domain_check overlaps STATE.h5 CYCLES TRANSLATE ROTATE SWEEPS
+//     NVT cycles from an H5MD state (SWEEPS: 0 sequential, 1 domains) with fixed move sizes,
+//     every pair checked by brute force after every cycle; stops at the first overlap.
+//   bench_mc_domain_check order N ETA CYCLES SWEEPS SEED T W L TRANSLATE ROTATE R_NEAR
+//     N boards T×W×L placed on a lattice at packing fraction ETA (aligned: the first CYCLES/4
+//     cycles are discarded), then CYCLES NVT cycles; every 20th adds to the averages the
+//     largest eigenvalue U_L of the long axes' Q tensor and Σ P2(u_i·u_j)/N over the pairs whose
+//     centres are closer than R_NEAR. Prints both means with block errors.
+//
+// Not a timed benchmark: it prints results, not rates. docs/performance.md quotes its output.
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "anisodyn/core/statistics.hpp"
+#include "anisodyn/geometry/overlap.hpp"
+#include "anisodyn/io/h5md.hpp"
+#include "anisodyn/mc/mc_engine.hpp"
+#include "anisodyn/system/order.hpp"
+#include "lattice_states.hpp"
+
+using namespace anisodyn;
+
+namespace {
+
+/// Overlapping pairs of a one-species configuration, every pair tested.
+long overlapping_pairs(const State& s) {
+  const Particles& p = s.particles;
+  const Shape& shape = s.species[0].shape;
+  const double rc = 2.0 * shape.circumradius();
+  std::vector<Mat3> rot(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) rot[i] = p.orientation(i).toRotationMatrix();
+  long n = 0;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    for (std::size_t j = i + 1; j < p.size(); ++j) {
+      const Vec3 t = s.box.min_image(p.position(j) - p.position(i));
+      if (t.squaredNorm() < rc * rc && overlap(shape, rot[i], shape, rot[j], t)) ++n;
+    }
+  return n;
+}
+
+/// Σ P2(u_i · u_j) / N over the long axes of the pairs closer than r_near.
+double near_pair_order(const State& s, double r_near) {
+  const Particles& p = s.particles;
+  std::vector<Vec3> u(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) u[i] = p.orientation(i) * Vec3::UnitZ();
+  double sum = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    for (std::size_t j = i + 1; j < p.size(); ++j) {
+      if (s.box.min_image(p.position(j) - p.position(i)).squaredNorm() >= r_near * r_near) continue;
+      const double c = u[i].dot(u[j]);
+      sum += 1.5 * c * c - 0.5;
+    }
+  return sum / static_cast<double>(p.size());
+}
+
+const char* sweep_name(bool domains) { return domains ? "domains" : "sequential"; }
+
+int check_overlaps(char** argv) {
+  State s = io::H5mdReader(argv[2]).read_frame(-1);
+  const long cycles = std::atol(argv[3]);
+  const bool domains = std::atoi(argv[6]) != 0;
+  McEngine mc(s, RngState{5, 0, 0, 4});
+  mc.set_domain_sweeps(domains);
+  mc.move_sizes().translate[0] = std::atof(argv[4]);
+  mc.move_sizes().rotate[0] = std::atof(argv[5]);
+  if (const long n = overlapping_pairs(s)) {
+    std::printf("the start overlaps (%ld pairs)\n", n);
+    return 1;
+  }
+  for (long c = 0; c < cycles; ++c) {
+    mc.cycle();
+    if (const long n = overlapping_pairs(s)) {
+      std::printf("%s: %ld overlapping pairs after cycle %ld\n", sweep_name(domains), n, c);
+      return 1;
+    }
+  }
+  std::printf("%s: no overlap after any of %ld cycles\n", sweep_name(domains), cycles);
+  return 0;
+}
+
+int compare_order(char** argv) {
+  const auto n = static_cast<std::size_t>(std::atol(argv[2]));
+  const double eta = std::atof(argv[3]);
+  const long cycles = std::atol(argv[4]);
+  const bool domains = std::atoi(argv[5]) != 0;
+  const std::uint64_t seed = std::strtoull(argv[6], nullptr, 10);
+  const Species board{"board", Shape::cuboid(std::atof(argv[7]), std::atof(argv[8]), std::atof(argv[9])), 1.0, {}, {}};
+  const double r_near = std::atof(argv[12]);
+  Rng rng(seed, 0);
+  State s = testing_support::lattice_of(board, n, eta, rng);
+  McEngine mc(s, RngState{seed, 0, 0, 4});
+  mc.set_domain_sweeps(domains);
+  mc.move_sizes().translate[0] = std::atof(argv[10]);
+  mc.move_sizes().rotate[0] = std::atof(argv[11]);
+  for (long c = 0; c < cycles / 4; ++c) mc.cycle();
+  std::vector<double> order, near;
+  for (long c = 0; c < cycles; ++c) {
+    mc.cycle();
+    if (c % 20 != 0) continue;
+    order.push_back(body_axis_order(s, 0)[2].order);
+    near.push_back(near_pair_order(s, r_near));
+  }
+  const MeanError u = block_average(order), p2 = block_average(near);
+  std::printf("%s seed %llu: U_L %.5f ± %.5f, near-pair P2/N %.5f ± %.5f, overlapping pairs at the end %ld\n", sweep_name(domains),
+              static_cast<unsigned long long>(seed), u.mean, u.error, p2.mean, p2.error, overlapping_pairs(s));
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string mode = argc > 1 ? argv[1] : "";
+  if (mode == "overlaps" && argc == 7) return check_overlaps(argv);
+  if (mode == "order" && argc == 13) return compare_order(argv);
+  std::fprintf(stderr,
+               "usage: %s overlaps STATE.h5 CYCLES TRANSLATE ROTATE SWEEPS\n"
+               "       %s order N ETA CYCLES SWEEPS SEED T W L TRANSLATE ROTATE R_NEAR\n"
+               "(SWEEPS: 0 sequential, 1 domains)\n",
+               argv[0], argv[0]);
+  return 2;
+}
