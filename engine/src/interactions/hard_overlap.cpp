@@ -71,7 +71,7 @@ std::vector<char> HardOverlap::grids_read() const {
 
 void HardOverlap::choose_searches() {
   const auto ns = static_cast<std::size_t>(nspecies_);
-  const std::vector<Vec3> h = mean_lab_half_extents(*state_);
+  const std::vector<Vec3> h = mean_lab_half_extents(*state_, rot_);
   tree_pair_.assign(ns * ns, 0);
   for (int a = 0; a < nspecies_; ++a)
     for (int b = 0; b < nspecies_; ++b) {
