@@ -9,7 +9,7 @@
 //     same neighbourhoods at every N, so any growth of the cost per trial is the algorithm's;
 //   rods + spheres — the 2000 rods with 200 spheres d = 0.1 (study A3's mixture);
 //   wide boards nematic — N = 2000 boards 12×8×1 at η = 0.34, quick-compressed from a dilute lattice;
-//   domain sweeps (two-thread preparation) on the first and third, with one and two threads.
+//   domain sweeps (two-thread preparation) on the first three, with one and two threads.
 // The states (lattice at the target density melted by NVT) are prepared once and cached in $ANISODYN_BENCH_CACHE
 // (default: ./bench-cache) so repeated runs time only the production loop.
 #include <benchmark/benchmark.h>
@@ -89,10 +89,11 @@ const Prepared& cuboids_a() {
   return p;
 }
 void BM_McCuboids2000(benchmark::State& bs) { run_cycles(bs, cuboids_a()); }
-void BM_McSpheres4000(benchmark::State& bs) {
+const Prepared& spheres_b() {
   static const Prepared p = prepare("spheres_N4000_eta0.40", Species{"hs", Shape::sphere(1.0), 1.0, {}, {}}, 4000, 0.40, 3000);
-  run_cycles(bs, p);
+  return p;
 }
+void BM_McSpheres4000(benchmark::State& bs) { run_cycles(bs, spheres_b()); }
 
 const Species kRod{"board", Shape::cuboid(1.0, 1.0, 12.0), 1.0, {}, {}};
 
@@ -107,10 +108,10 @@ void BM_McRods2000Nematic(benchmark::State& bs) {
   bs.counters["U_L"] = body_axis_order(rods_c().state, 0)[2].order;
 }
 
-// Domain sweeps (MC preparation on two threads) on (a) and (c): range(0) = 0 for (a), 2 for (c);
-// range(1) = OpenMP threads. Wall-clock rates.
+// Domain sweeps (MC preparation on two threads) on (a), (b) and (c): range(0) = 0 for (a), 1 for
+// (b) (4000 spheres: a grid of 4 domains), 2 for (c); range(1) = OpenMP threads. Wall-clock rates.
 void BM_McDomainSweeps(benchmark::State& bs) {
-  const Prepared& p = bs.range(0) == 0 ? cuboids_a() : rods_c();
+  const Prepared& p = bs.range(0) == 0 ? cuboids_a() : bs.range(0) == 1 ? spheres_b() : rods_c();
   const ScopedThreadCount threads(static_cast<int>(bs.range(1)));
   run_cycles(bs, p, true);
 }
@@ -201,7 +202,7 @@ void BM_McWideBoards2000Nematic(benchmark::State& bs) {
 }  // namespace
 
 BENCHMARK(BM_McRods2000Nematic)->Unit(benchmark::kMillisecond)->MinTime(2.0);
-BENCHMARK(BM_McDomainSweeps)->ArgsProduct({{0, 2}, {1, 2}})->Unit(benchmark::kMillisecond)->MinTime(2.0)->UseRealTime();
+BENCHMARK(BM_McDomainSweeps)->ArgsProduct({{0, 1, 2}, {1, 2}})->Unit(benchmark::kMillisecond)->MinTime(2.0)->UseRealTime();
 BENCHMARK(BM_McNpt)->ArgsProduct({{0, 2}, {1, 2}, {0, 1}})->Unit(benchmark::kMillisecond)->MinTime(2.0)->UseRealTime();
 BENCHMARK(BM_McRodsNematicN)->Args({8000, 0})->Args({32000, 0})->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_McRodsNematicN)->ArgsProduct({{2000, 8000, 32000}, {1, 2}})->Unit(benchmark::kMillisecond)->MinTime(2.0)->UseRealTime();

@@ -45,6 +45,7 @@ const std::vector<StencilCell>& stencil_order(int sx, int sy, int sz) {
 
 void SpeciesGrid::configure(const Box& box, double self_cutoff, std::size_t count) {
   const Vec3& L = box.edges();
+  const Int3 previous_cells = n_;
   double h = std::max(self_cutoff, 1e-12);
   const double max_cells = std::max(1.0, kMaxCellsPerParticle * static_cast<double>(count));
   for (;;) {
@@ -57,7 +58,11 @@ void SpeciesGrid::configure(const Box& box, double self_cutoff, std::size_t coun
     inv_h_[k] = 1.0 / h_[k];
   }
   const double mean_occupancy = static_cast<double>(count) / n_.cast<double>().prod();
-  capacity_ = std::max<std::size_t>(4, static_cast<std::size_t>(std::ceil(3.0 * mean_occupancy)));
+  const std::size_t wanted = std::max<std::size_t>(4, static_cast<std::size_t>(std::ceil(3.0 * mean_occupancy)));
+  // The same cells keep a capacity they had to grow to: where the particles crowd part of the box
+  // (a domain sweep's copy), the estimate from the mean is short, and the storage would regrow by
+  // doubling at every rebuild. The slots' order, and so every result, is the same either way.
+  capacity_ = n_ == previous_cells ? std::max(wanted, capacity_) : wanted;
 }
 
 void SpeciesGrid::leave_empty() {
