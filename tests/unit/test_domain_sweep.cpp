@@ -16,6 +16,8 @@
 #include <cmath>
 #include <cstring>
 #include <optional>
+#include <tuple>
+#include <vector>
 
 #include "anisodyn/core/statistics.hpp"
 #include "anisodyn/mc/mc_engine.hpp"
@@ -63,6 +65,14 @@ TEST(Slab, HoldsAndReachesAsThePeriodicImagesSay) {
 
 namespace {
 
+/// Domain sweeps with the given layout (none: slabs), with the rods' fixed move sizes.
+void use_domains(McEngine& mc, const std::optional<DomainSweep::Layout>& layout) {
+  mc.set_domain_sweeps(true);
+  mc.domain_sweep()->set_layout(layout);
+  mc.move_sizes().translate[0] = 0.3;
+  mc.move_sizes().rotate[0] = 0.05;
+}
+
 /// Dense rods under domain sweeps with the given layout (none: slabs): no overlaps after 60 cycles,
 /// N trials per cycle, every particle moved, and the same bits on one and two threads.
 void dense_rods_check(const std::optional<DomainSweep::Layout>& layout, int most_idle_cycles) {
@@ -71,10 +81,7 @@ void dense_rods_check(const std::optional<DomainSweep::Layout>& layout, int most
   const auto runs = on_thread_counts({1, 2}, [&] {
     State s = start;
     McEngine mc(s, RngState{21, 0, 0, 4});
-    mc.set_domain_sweeps(true);
-    mc.domain_sweep()->set_layout(layout);
-    mc.move_sizes().translate[0] = 0.3;
-    mc.move_sizes().rotate[0] = 0.05;
+    use_domains(mc, layout);
     int idle = 0;
     for (int c = 0; c < 60; ++c) {
       const MoveCounters before = mc.counters();
@@ -168,6 +175,44 @@ TEST(DomainSweep, ARestoredCutContinuesTheRunBitForBit) {
   EXPECT_EQ(resumed.qz, whole.particles.qz);
   // Without the cut the resumed run draws a new one and leaves the uninterrupted trajectory.
   EXPECT_NE(resume(std::nullopt).x, whole.particles.x);
+}
+
+TEST(DomainSweep, CyclesRunAtOnceGiveTheBitsOfSingleCycles) {
+  // Each domain runs its share of several cycles back to back; the domains are independent within
+  // a cut, so the result must be that of the cycles run one by one, cut boundaries included.
+  Rng rng(13, 0);
+  const State start = lattice_of(kRod, 400, 0.25, rng);
+  for (const auto& layout : {std::optional<DomainSweep::Layout>{}, std::optional<DomainSweep::Layout>{DomainSweep::Layout{2, 2, 1}}}) {
+    auto run = [&](int batch) {
+      State s = start;
+      McEngine mc(s, RngState{41, 0, 0, 4});
+      use_domains(mc, layout);
+      std::vector<int> runs;
+      for (int done = 0; done < 21;) {
+        const int k = mc.cycles(std::min(batch, 21 - done));
+        EXPECT_GE(k, 1);
+        EXPECT_LE(k, std::min(batch, DomainSweep::kCyclesPerCut));
+        runs.push_back(k);
+        done += k;
+      }
+      EXPECT_FALSE(mc.overlap().first_overlap().has_value());
+      return std::make_tuple(s.particles, mc.counters(), mc.rng_state(), runs);
+    };
+    const auto [one, one_counters, one_rng, one_runs] = run(1);
+    const auto [five, five_counters, five_rng, five_runs] = run(5);
+    // Batches of 5 stop at each cut's end (8 cycles): 5, 3, 5, 3, 5.
+    EXPECT_EQ(five_runs, (std::vector<int>{5, 3, 5, 3, 5}));
+    EXPECT_EQ(one.x, five.x);
+    EXPECT_EQ(one.y, five.y);
+    EXPECT_EQ(one.z, five.z);
+    EXPECT_EQ(one.qw, five.qw);
+    EXPECT_EQ(one.qx, five.qx);
+    EXPECT_EQ(one.qz, five.qz);
+    EXPECT_EQ(one_counters.translate_accepted, five_counters.translate_accepted);
+    EXPECT_EQ(one_counters.rotate_tried, five_counters.rotate_tried);
+    EXPECT_EQ(one_rng.counter, five_rng.counter);
+    EXPECT_NE(one.x, start.particles.x);
+  }
 }
 
 TEST(DomainSweep, TwoHardSpheresSampleTheExactSeparationLaw) {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <csignal>
+#include <tuple>
 
 #include "anisodyn/config/builder.hpp"
 #include "anisodyn/core/error.hpp"
@@ -131,4 +132,48 @@ TEST_F(McProtocolRun, AnInterruptDuringOverlapRemovalGoesBackAndResumesToTheSame
   EXPECT_EQ(resumed.particles.z, reference.particles.z);
   EXPECT_EQ(resumed.particles.qw, reference.particles.qw);
   EXPECT_EQ(resumed.particles.qz, reference.particles.qz);
+}
+
+TEST_F(McProtocolRun, DomainSweepPhasesRunInBatchesWithTheBitsOfSingleCycles) {
+  // NVT phases under domain sweeps run several cycles as one batch, stopping wherever anything
+  // reads the state: observations (every 3 cycles), frames (every 7), tuning (every 20),
+  // checkpoints. A checkpoint due every cycle forbids batches, so that run is the cycle-by-cycle
+  // reference; another with checkpoints every 4 cycles batches between them.
+  State start = lattice(Species{"rod", Shape::cuboid(1.0, 1.0, 12.0), 1.0, {}, {}}, 300, 0.25, false);
+  McProtocol proto;
+  proto.domain_sweeps = true;
+  proto.observe_every = 3;
+  proto.tune_every = 20;
+  proto.frames.every_steps = 7;
+  McPhase tuned;
+  tuned.type = McPhase::Type::Nvt;
+  tuned.label = "tuned";
+  tuned.cycles = 47;
+  tuned.tune = true;
+  McPhase sampled = tuned;
+  sampled.label = "sampled";
+  sampled.cycles = 31;
+  sampled.tune = false;
+  proto.phases = {tuned, sampled};
+  auto run_with_checkpoints = [&](std::int64_t every, const std::string& name) {
+    State s = start;
+    McRunner runner(s, proto, true);
+    io::H5mdWriter out(file(name), {"anisodyn", "", "test", nlohmann::json::object(), nlohmann::json::object(), s.species});
+    int written = 0;
+    runner.run(out, every, [&] { ++written; });
+    return std::make_tuple(s.particles, runner.summary(), runner.checkpoint_state(), written);
+  };
+  const auto [single, single_summary, single_engine, single_checkpoints] = run_with_checkpoints(1, "single.h5");
+  for (const std::int64_t every : {std::int64_t{0}, std::int64_t{4}}) {
+    const auto [batched, summary, engine, checkpoints] = run_with_checkpoints(every, "batched.h5");
+    EXPECT_EQ(batched.x, single.x) << "checkpoints every " << every;
+    EXPECT_EQ(batched.y, single.y);
+    EXPECT_EQ(batched.qw, single.qw);
+    EXPECT_EQ(batched.qz, single.qz);
+    EXPECT_EQ(summary, single_summary);
+    EXPECT_EQ(engine, single_engine);
+    EXPECT_EQ(checkpoints, every == 0 ? 0 : 78 / 4);
+  }
+  EXPECT_EQ(single_checkpoints, 78);
+  EXPECT_NE(single.x, start.particles.x);
 }

@@ -89,24 +89,34 @@ DomainSweep::Cut DomainSweep::draw_cut(Rng& rng) const {
 
 void DomainSweep::cycle(State& state, Rng& rng, const MoveSizes& moves, const OrientationalField& field, bool removing_overlaps,
                         MoveCounters& counters) {
+  cycles(state, rng, 1, moves, field, removing_overlaps, counters);
+}
+
+int DomainSweep::cycles(State& state, Rng& rng, int wanted, const MoveSizes& moves, const OrientationalField& field,
+                        bool removing_overlaps, MoveCounters& counters) {
   const std::size_t n = state.particles.size();
   if (!layout_chosen_) set_layout(automatic_layout(state));
   if (!cut_) {
     cut_ = draw_cut(rng);
     copies_valid_ = false;
   }
-  seeds_.resize(static_cast<std::size_t>(domain_count(cut_->count)));
+  const int k_cycles = std::clamp(wanted, 1, kCyclesPerCut - cut_->cycles_done);
+  // The seeds in the order single cycles draw them: cycle by cycle, domain by domain.
+  const std::size_t domain_total = static_cast<std::size_t>(domain_count(cut_->count));
+  seeds_.resize(domain_total * static_cast<std::size_t>(k_cycles));
   for (auto& s : seeds_) s = rng.bits();
   if (!copies_valid_ || copied_edges_ != state.box.edges()) copy_domains(state);
-  if (++cut_->cycles_done == kCyclesPerCut) cut_.reset();
+  cut_->cycles_done += k_cycles;
+  if (cut_->cycles_done == kCyclesPerCut) cut_.reset();
 
-  // The N trials are shared equally between the domains that have movable bodies, so the threads
-  // finish together; the share does not depend on the configuration beyond which domains can
-  // move, which no trial changes.
+  // The N trials of a cycle are shared equally between the domains that have movable bodies, so
+  // the threads finish together; the share does not depend on the configuration beyond which
+  // domains can move, which no trial changes. The domains are independent within a cut, so each
+  // runs its cycles back to back (its copy stays in cache) with the bits of cycles run one by one.
   std::int64_t active = 0;
   for (const Part& part : parts_) active += part.movable.empty() ? 0 : 1;
   for (Part& part : parts_) part.counters.reset(state.species.size());
-  if (active == 0) return;  // every particle straddles a cut: nothing moves this cycle
+  if (active == 0) return k_cycles;  // every particle straddles a cut: nothing moves
   const auto share = static_cast<std::int64_t>(n) / active, extra = static_cast<std::int64_t>(n) % active;
   const int first = first_active(parts_);
   const int domains = static_cast<int>(parts_.size());
@@ -114,9 +124,13 @@ void DomainSweep::cycle(State& state, Rng& rng, const MoveSizes& moves, const Or
   for (int k = 0; k < domains; ++k) {
     Part& part = parts_[static_cast<std::size_t>(k)];
     if (part.movable.empty()) continue;  // nothing to move: no copy to index
-    sweep(state, part, seeds_[static_cast<std::size_t>(k)], share + (k == first ? extra : 0), moves, field, removing_overlaps);
+    const std::int64_t trials = share + (k == first ? extra : 0);
+    for (int c = 0; c < k_cycles; ++c)
+      sweep(part, seeds_[static_cast<std::size_t>(c) * domain_total + static_cast<std::size_t>(k)], trials, moves, field, removing_overlaps);
+    write_back(state, part);
   }
   for (const Part& part : parts_) counters.add_particle_moves(part.counters);
+  return k_cycles;
 }
 
 void DomainSweep::restore_cut(const std::optional<Cut>& cut) {
@@ -185,10 +199,7 @@ void DomainSweep::bin_particles(const State& state) {
   std::array<std::vector<int>, 3> reached;
   for (std::size_t i = 0; i < p.size(); ++i) {
     const Vec3 c(p.x[i], p.y[i], p.z[i]);
-    for (int k = 0; k < 3; ++k) {
-      const auto uk = static_cast<std::size_t>(k);
-      reached_along(k, count[uk], c[k], half_extent_[i][k], L[k], reached[uk]);
-    }
+    for (int k = 0; k < 3; ++k) reached_along(k, c[k], half_extent_[i][k], L[k], reached[static_cast<std::size_t>(k)]);
     for (const int a : reached[0])
       for (const int b : reached[1])
         for (const int e : reached[2])
@@ -196,21 +207,23 @@ void DomainSweep::bin_particles(const State& state) {
   }
 }
 
-void DomainSweep::reached_along(int axis, int m, double c, double h, double L, std::vector<int>& out) const {
+void DomainSweep::reached_along(int axis, double c, double h, double L, std::vector<int>& out) const {
   out.clear();
+  const auto ua = static_cast<std::size_t>(axis);
+  const Layout& count = cut_->count;
+  const int m = count[ua];
   if (m == 1) {
     out.push_back(0);
     return;
   }
   // Domain j along the axis starts at the first domain's start plus j widths; the interval's ends,
   // measured from there, bound the indices it can meet (one more on each side covers round-off).
-  const auto ua = static_cast<std::size_t>(axis);
   const Part& first = parts_.front();
   const double start = first.domain.along[ua].start, width = L / m;
   double u = c - start;
   u -= L * std::floor(u / L);
   const auto lo = static_cast<int>(std::floor((u - h) / width)) - 1, hi = static_cast<int>(std::floor((u + h) / width)) + 1;
-  const int stride = ua == 0 ? 1 : ua == 1 ? cut_->count[0] : cut_->count[0] * cut_->count[1];
+  const int stride = ua == 0 ? 1 : ua == 1 ? count[0] : count[0] * count[1];
   const int from = hi - lo + 1 >= m ? 0 : lo, to = hi - lo + 1 >= m ? m - 1 : hi;
   for (int t = from; t <= to; ++t) {
     const int j = ((t % m) + m) % m;
@@ -231,7 +244,7 @@ void DomainSweep::copy_part(const State& state, Part& part) const {
   part.sub.particles.assign_subset(p, part.global);
 }
 
-void DomainSweep::sweep(State& state, Part& part, std::uint64_t seed, std::int64_t trials, const MoveSizes& moves,
+void DomainSweep::sweep(Part& part, std::uint64_t seed, std::int64_t trials, const MoveSizes& moves,
                         const OrientationalField& field, bool removing_overlaps) {
   Rng rng(seed, kSlabStream);
   // Moves must keep a body movable by the same test that chose it: a move and its reverse then
@@ -239,6 +252,9 @@ void DomainSweep::sweep(State& state, Part& part, std::uint64_t seed, std::int64
   const TrialMove move{part.sub, *part.overlap, rng, part.counters, moves, field, removing_overlaps, &part.inner};
   const std::uint64_t n = part.movable.size();
   for (std::int64_t t = 0; t < trials; ++t) move.attempt(part.movable[rng.index(n)]);
+}
+
+void DomainSweep::write_back(State& state, const Part& part) {
   // Only movable particles changed; they belong to this domain alone.
   Particles& to = state.particles;
   const Particles& from = part.sub.particles;

@@ -90,6 +90,16 @@ void McEngine::cycle() {
   }
 }
 
+int McEngine::cycles(int wanted) {
+  if (!batches_cycles()) {
+    cycle();
+    return 1;
+  }
+  const int done = domains_->cycles(state_, rng_, wanted, moves_, field_, removing_overlaps_, counters_);
+  overlap_stale_ = true;
+  return done;
+}
+
 void McEngine::particle_move() {
   const auto i = static_cast<std::int32_t>(rng_.index(state_.particles.size()));
   TrialMove{state_, overlap_, rng_, counters_, moves_, field_, removing_overlaps_, nullptr}.attempt(i);

@@ -1,6 +1,7 @@
 #include "anisodyn/mc/protocol.hpp"
 #include "anisodyn/geometry/body_axes.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -92,15 +93,39 @@ void McRunner::observe(io::H5mdWriter& out, std::int64_t, double) {
 double McRunner::advance() {
   sweep_.step(state_);
   ++cursor_.cycle_in_phase;
+  tune_if_due();
+  return kTimePerCycle;
+}
+
+double McRunner::advance_steps(std::int64_t k) {
+  for (std::int64_t done = 0; done < k;) done += engine_.cycles(static_cast<int>(k - done));
+  cursor_.cycle_in_phase += k;
+  tune_if_due();  // the batch ends at a tuning point, if it reaches one
+  return kTimePerCycle;
+}
+
+void McRunner::tune_if_due() {
   if (protocol_.phases[cursor_.phase].tune && cursor_.cycle_in_phase % protocol_.tune_every == 0) {
     engine_.tune(protocol_.target_acceptance, engine_.counters().since(tune_mark_));
     tune_mark_ = engine_.counters();
   }
-  return kTimePerCycle;
 }
 
 void McRunner::one_cycle(io::H5mdWriter& out) {
   loop_.step(out);
+  checkpoints_->tick(loop_.step(), "cycle " + std::to_string(loop_.step()));
+}
+
+void McRunner::cycles_at_once(io::H5mdWriter& out, std::int64_t most) {
+  if (!engine_.batches_cycles()) {
+    one_cycle(out);
+    return;
+  }
+  std::int64_t k = std::min<std::int64_t>(most, DomainSweep::kCyclesPerCut);
+  if (protocol_.phases[cursor_.phase].tune)
+    k = std::min(k, protocol_.tune_every - cursor_.cycle_in_phase % protocol_.tune_every);
+  if (const std::int64_t every = checkpoints_->every(); every > 0) k = std::min(k, every - loop_.step() % every);
+  loop_.steps(out, loop_.quiet_steps(k, kTimePerCycle));
   checkpoints_->tick(loop_.step(), "cycle " + std::to_string(loop_.step()));
 }
 
@@ -109,7 +134,7 @@ void McRunner::run_fixed_phase(io::H5mdWriter& out, const McPhase& phase) {
   else engine_.set_pressure(std::nullopt);
   Progress progress(std::string("mc ") + type_name(phase.type) + " " + phase.label, phase.cycles, quiet_);
   while (cursor_.cycle_in_phase < phase.cycles) {
-    one_cycle(out);
+    cycles_at_once(out, phase.cycles - cursor_.cycle_in_phase);
     progress.update(cursor_.cycle_in_phase, phase_detail(state_, engine_));
   }
   progress.finish(phase_detail(state_, engine_));

@@ -24,8 +24,9 @@
 // Why a grid for large systems: a trial of the sequential sweep finds its particle, tree path and
 // partners cold once the configuration outgrows the core's cache (32000 rods: 0.4 of the speed at
 // 2000). A domain's copy of about kParticlesPerDomain particles and its trees stay in cache while
-// its trials run: from 16000 to 54000 rods the cost per trial stays the same, 15–20% above that of
-// 2000 rods in two slabs, whose copies stay in cache from cycle to cycle (docs/performance.md).
+// its trials run. Run one cycle at a time, each domain's copy was cold again at its turn, 15–20%
+// below the speed of 2000 rods in two slabs; cycles() runs each domain's cycles of a cut back to
+// back, which removes that step (docs/performance.md).
 //
 // The domain count is fixed by the cut and each domain draws from its own stream, seeded every
 // cycle from the engine's generator: the result is the same bits on any thread count.
@@ -78,6 +79,12 @@ class DomainSweep {
   /// invalidate() was called (a changed box is noticed anyway).
   void cycle(State& state, Rng& rng, const MoveSizes& moves, const OrientationalField& field, bool removing_overlaps,
              MoveCounters& counters);
+  /// Up to `wanted` cycles at once, as many as remain in the cut in use (or in a new one): the
+  /// same bits as that many calls of cycle(), with each domain's cycles run back to back, so that
+  /// its copy is read from cache after the first. Nothing may change the state in between (no
+  /// volume moves). Returns the number of cycles run (≥ 1).
+  int cycles(State& state, Rng& rng, int wanted, const MoveSizes& moves, const OrientationalField& field, bool removing_overlaps,
+             MoveCounters& counters);
   /// The configuration changed behind the domains' copies (a volume move): copy them again before
   /// the next cycle, under the same cut.
   void invalidate() { copies_valid_ = false; }
@@ -105,12 +112,15 @@ class DomainSweep {
   static void set_bounds(Part& part, const Vec3& L);
   /// Lists in each part's `global` the particles whose lab boxes reach into its domain.
   void bin_particles(const State& state);
-  /// The indices j < m of the domains along `axis` that the interval [c − h, c + h] reaches.
-  void reached_along(int axis, int m, double c, double h, double L, std::vector<int>& out) const;
+  /// The indices of the domains along `axis` that the interval [c − h, c + h] reaches.
+  void reached_along(int axis, double c, double h, double L, std::vector<int>& out) const;
   /// The part's copy of its listed particles, and which of them are movable.
   void copy_part(const State& state, Part& part) const;
-  void sweep(State& state, Part& part, std::uint64_t seed, std::int64_t trials, const MoveSizes& moves,
-             const OrientationalField& field, bool removing_overlaps);
+  /// `trials` trial moves in the part's copy, from the stream seeded by `seed`.
+  static void sweep(Part& part, std::uint64_t seed, std::int64_t trials, const MoveSizes& moves, const OrientationalField& field,
+                    bool removing_overlaps);
+  /// Copies the part's movable particles back into `state`.
+  static void write_back(State& state, const Part& part);
 
   bool layout_chosen_ = false;
   std::optional<Layout> grid_;

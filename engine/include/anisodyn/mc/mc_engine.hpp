@@ -33,6 +33,12 @@ class McEngine {
   /// large systems, on all threads) followed, under NPT, by one volume move. The engine does not
   /// see changes made to the state behind its back.
   void cycle();
+  /// Up to `wanted` cycles at once, with the bits of as many calls of cycle(): NVT domain sweeps
+  /// run each domain's cycles back to back, within one cut (DomainSweep::cycles); otherwise one
+  /// cycle. Returns the number of cycles run (≥ 1).
+  int cycles(int wanted);
+  /// Whether cycles() can run more than one cycle at once now (NVT domain sweeps).
+  bool batches_cycles() const { return domains_ && !beta_pressure_; }
   /// Domain sweeps on or off (off: the sequential random choice, the default). Preparation only:
   /// the trajectory differs from the sequential one, the distribution sampled does not.
   void set_domain_sweeps(bool on);

@@ -106,12 +106,19 @@ class McRunner : public run::StepClient {
  private:
   // run::StepClient
   double advance() override;
+  double advance_steps(std::int64_t k) override;
   void observe(io::H5mdWriter& out, std::int64_t step, double time) override;
+  /// Tunes the move sizes when the phase's cycle count has reached a tuning point.
+  void tune_if_due();
 
   void run_fixed_phase(io::H5mdWriter& out, const McPhase& phase);
   void run_compress_phase(io::H5mdWriter& out, const McPhase& phase);
   void run_quick_compress(io::H5mdWriter& out, const McPhase& phase);
   void one_cycle(io::H5mdWriter& out);
+  /// Up to `most` cycles of a fixed phase: with domain sweeps under NVT, as many as can run as one
+  /// batch (McEngine::cycles, the same bits) before anything reads the state — an observation, a
+  /// frame, tuning, a checkpoint; otherwise one.
+  void cycles_at_once(io::H5mdWriter& out, std::int64_t most);
   /// Quick compression's last configuration without overlaps (before the shrink whose overlaps
   /// are being removed) and the runner's state then: where an interrupt goes back to.
   struct ValidPoint {

@@ -5,6 +5,7 @@
 // rule fires. The production runner drives it through a field schedule, MC preparation through
 // its phases; either way counting, observing, framing and their checkpointed cursor are written once.
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -21,6 +22,9 @@ class StepClient {
   virtual ~StepClient() = default;
   /// Advances the state by one step (MC, DMC: one cycle); returns the time the step covered.
   virtual double advance() = 0;
+  /// Advances the state by `k` steps at once, for clients that run several steps faster together
+  /// (StepLoop::steps); returns the time each step covered. Only called by steps() for k > 1.
+  virtual double advance_steps(std::int64_t /*k*/) { throw std::logic_error("this engine does not run steps in batches"); }
   /// Writes one row of observables, over the steps since the previous row, at (step, time).
   virtual void observe(io::H5mdWriter& out, std::int64_t step, double time) = 0;
   /// Per-step records after the step was counted (e.g. the pulled tracer's position).
@@ -37,6 +41,14 @@ class StepLoop {
 
   /// One step: advance, count, observe if due, the client's per-step records, a frame if due.
   void step(io::H5mdWriter& out);
+  /// How many of the next `wanted` steps, each `dt` long, can run as one batch: up to and
+  /// including the first one at which an observation or a frame falls due (nothing else reads the
+  /// state in between).
+  std::int64_t quiet_steps(std::int64_t wanted, double dt) const;
+  /// `k` steps (k ≤ quiet_steps(k, dt)) as one batch (StepClient::advance_steps), counted as step()
+  /// counts them; the observation or frame, if any, comes after the last. For clients without
+  /// per-step records (after_step).
+  void steps(io::H5mdWriter& out, std::int64_t k);
   /// The end of a run: a last observation row over the steps since the previous one (when
   /// `remainder_row`), and the final frame unless the last step already wrote it.
   void finish(io::H5mdWriter& out, bool remainder_row);
@@ -53,6 +65,8 @@ class StepLoop {
 
  private:
   void observe(io::H5mdWriter& out);
+  /// Counts one step of `dt` already taken: observation, per-step records and frame when due.
+  void count_step(io::H5mdWriter& out, double dt);
 
   State& state_;
   StepClient& client_;
