@@ -24,7 +24,7 @@ tool::Description description() {
       tool::optional("tune_every", "integer", 100, "cycles between tuning updates (only when a phase tunes)"),
       tool::optional("observe_every", "integer", 10, "cycles between observable samples"),
       tool::optional("sweeps", "string", "sequential",
-                     "sequential | domains: two-slab domain sweeps, one thread per slab with --threads 2 (same distribution, other trajectory; docs/mc.md)"),
+                     "sequential | domains: domain sweeps on all --threads (two slabs, or from 4000 particles a grid of domains; same distribution, other trajectory; docs/mc.md)"),
       tool::optional("frames", "object", nullptr, "frame rules: every_cycles, log_cycles {per_decade, restart_every}; none: the final frame only "
                                                   "(docs/run.md)"),
       tool::optional("field", "object", nullptr,
