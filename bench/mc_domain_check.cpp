@@ -78,6 +78,16 @@ void set_sweep_and_moves(McEngine& mc, bool domains, const char* translate, cons
   mc.move_sizes().rotate[0] = std::atof(rotate);
 }
 
+/// `discard` cycles, then `cycles` more, calling sample() after every `every`-th of those.
+template <class Sample>
+void sample_every(McEngine& mc, long discard, long cycles, long every, Sample&& sample) {
+  for (long c = 0; c < discard; ++c) mc.cycle();
+  for (long c = 0; c < cycles; ++c) {
+    mc.cycle();
+    if (c % every == 0) sample();
+  }
+}
+
 int check_overlaps(char** argv) {
   State s = io::H5mdReader(argv[2]).read_frame(-1);
   const long cycles = std::atol(argv[3]);
@@ -111,14 +121,11 @@ int compare_order(char** argv) {
   State s = testing_support::lattice_of(board, n, eta, rng);
   McEngine mc(s, RngState{seed, 0, 0, 4});
   set_sweep_and_moves(mc, domains, argv[10], argv[11]);
-  for (long c = 0; c < cycles / 4; ++c) mc.cycle();
   std::vector<double> order, near;
-  for (long c = 0; c < cycles; ++c) {
-    mc.cycle();
-    if (c % 20 != 0) continue;
+  sample_every(mc, cycles / 4, cycles, 20, [&] {
     order.push_back(body_axis_order(s, 0)[2].order);
     near.push_back(near_pair_order(s, r_near));
-  }
+  });
   const MeanError u = block_average(order), p2 = block_average(near);
   std::printf("%s seed %llu: U_L %.5f ± %.5f, near-pair P2/N %.5f ± %.5f, overlapping pairs at the end %ld\n", sweep_name(domains),
               static_cast<unsigned long long>(seed), u.mean, u.error, p2.mean, p2.error, overlapping_pairs(s));
@@ -143,14 +150,11 @@ int compare_contacts(char** argv) {
   const double eps = std::atof(argv[8]);
   McEngine mc(s, RngState{seed, 0, 0, 4});
   set_sweep_and_moves(mc, domains, argv[4], argv[5]);
-  for (long c = 0; c < cycles / 10; ++c) mc.cycle();
   std::vector<double> blocked, order;
-  for (long c = 0; c < cycles; ++c) {
-    mc.cycle();
-    if (c % 10 != 0) continue;
+  sample_every(mc, cycles / 10, cycles, 10, [&] {
     blocked.push_back(overlaps_when_shrunk(s, eps) ? 1.0 : 0.0);
     order.push_back(body_axis_order(s, 0)[2].order);
-  }
+  });
   const MeanError b = block_average(blocked), u = block_average(order);
   std::printf("%s seed %llu: P(overlap after shrinking by %g) %.4f ± %.4f, U_L %.5f ± %.5f\n", sweep_name(domains),
               static_cast<unsigned long long>(seed), eps, b.mean, b.error, u.mean, u.error);
@@ -169,12 +173,10 @@ int compare_npt(char** argv) {
   for (long c = 0; c < cycles / 10; ++c) mc.cycle();
   const MoveCounters start = mc.counters();
   std::vector<double> eta, order;
-  for (long c = 0; c < cycles; ++c) {
-    mc.cycle();
-    if (c % 10 != 0) continue;
+  sample_every(mc, 0, cycles, 10, [&] {
     eta.push_back(s.packing_fraction());
     order.push_back(body_axis_order(s, 0)[2].order);
-  }
+  });
   const MoveCounters w = mc.counters().since(start);
   const MeanError e = block_average(eta), u = block_average(order);
   std::printf("%s seed %llu: volume acceptance %.4f (%lld moves), eta %.5f ± %.5f, U_L %.5f ± %.5f\n", sweep_name(domains),
