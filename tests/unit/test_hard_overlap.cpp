@@ -16,6 +16,7 @@ using namespace anisodyn;
 using anisodyn::testing_support::brute_force_overlaps;
 using anisodyn::testing_support::lattice_of;
 using anisodyn::testing_support::on_thread_counts;
+using anisodyn::testing_support::with_threads;
 
 namespace {
 
@@ -76,8 +77,8 @@ TEST(HardOverlap, MatchesBruteForceForBoardsAndSpheres) {
 
 TEST(HardOverlap, TreesMatchBruteForceAfterManyAcceptedMoves) {
   // Rods 12×1×1 at η = 0.2 in a box about three rod lengths wide, compressed under pressure:
-  // the engine's trees are refitted on every accepted move and rebuilt once per sweep and after
-  // every volume move; its decisions must still be the brute force's.
+  // the engine's trees are refitted on every accepted move and after every volume move, and
+  // rebuilt once per sweep; its decisions must still be the brute force's.
   Rng rng(23, 0);
   State s = lattice_of(Species{"rod", Shape::cuboid(1.0, 1.0, 12.0), 1.0, {}, {}}, 400, 0.2, rng);
   McEngine mc(s, RngState{9, 0, 0, 4});
@@ -113,6 +114,55 @@ TEST(HardOverlap, AnyOverlapFindsOnePlantedPairOnOneOrTwoThreads) {
           << s.species[0].name << ": particle " << i << " on " << j;
     }
   }
+}
+
+TEST(HardOverlap, RefreshAfterMovesMadeBehindItsBackMatchesBruteForce) {
+  // Rods (trees) and spheres (grid) moved by an engine working on a copy of the state, which the
+  // search is not told of; refresh() with fewer unseen moves than particles refits the trees
+  // instead of rebuilding them. Then the copy is compressed by 1%, positions with the box, as a
+  // volume move does. Either way the search must decide trials as the brute force does.
+  Rng rng(29, 0);
+  State s = lattice_of(Species{"rod", Shape::cuboid(1.0, 1.0, 12.0), 1.0, {}, {}}, 400, 0.2, rng);
+  HardOverlap ho(s);
+  ASSERT_TRUE(ho.uses_tree(0, 0));
+  State moved = s;
+  McEngine mc(moved, RngState{5, 0, 0, 4});
+  mc.cycle();
+  const std::int64_t accepted = mc.counters().translate_accepted[0] + mc.counters().rotate_accepted[0];
+  ASSERT_GT(accepted, 50);
+  ASSERT_LT(accepted, 400);  // below one move per particle: the refit path
+  ho.refresh(moved, {accepted});
+  EXPECT_TRUE(ho.uses_tree(0, 0));
+  compare_trials(moved, ho, rng, 3000, 0.5);
+  const Vec3 old_edges = moved.box.edges();
+  moved.box.set_edges(old_edges * 0.99);
+  for (std::size_t i = 0; i < moved.particles.size(); ++i) moved.particles.set_position(i, moved.particles.position(i) * 0.99);
+  ho.refresh(moved, {0});
+  compare_trials(moved, ho, rng, 3000, 0.5);
+  EXPECT_EQ(ho.first_overlap().has_value(), HardOverlap(moved).first_overlap().has_value());
+  EXPECT_THROW(ho.refresh(moved, {}), std::invalid_argument);
+}
+
+TEST(HardOverlap, OverlappingParticleNamesAWitnessAndQueriesSuspectsFirst) {
+  // Two planted pairs (a particle on another's centre) in a lattice of rods. On one thread the
+  // scan in index order names the lower index of the first pair; on two, either pair's; with the
+  // second pair's lower index among the suspects, that one, whatever the threads.
+  Rng rng(41, 1);
+  const State s = lattice_of(Species{"rod", Shape::cuboid(1.0, 1.0, 12.0), 1.0, {}, {}}, 1200, 0.2, rng);
+  const std::size_t n = s.particles.size();
+  EXPECT_EQ(on_thread_counts({1, 2}, [&] { return HardOverlap(s).overlapping_particle({3, 5}).has_value(); }),
+            (std::vector<bool>{false, false}));
+  State t = s;
+  t.particles.set_position(n / 2, t.particles.position(7));    // pair (7, n/2)
+  t.particles.set_position(n - 1, t.particles.position(n / 3));  // pair (n/3, n − 1)
+  const auto first = 7, second = static_cast<std::int32_t>(n / 3);
+  EXPECT_EQ(with_threads(1, [&] { return HardOverlap(t).overlapping_particle(); }), std::optional<std::int32_t>(first));
+  const std::int32_t witness = with_threads(2, [&] { return HardOverlap(t).overlapping_particle().value_or(-1); });
+  EXPECT_TRUE(witness == first || witness == second) << witness;
+  EXPECT_EQ(on_thread_counts({1, 2}, [&] { return HardOverlap(t).overlapping_particle({3, second, first}).value_or(-1); }),
+            (std::vector<std::int32_t>{second, second}));
+  // Suspects outside the configuration are skipped.
+  EXPECT_EQ(HardOverlap(t).overlapping_particle({-1, static_cast<std::int32_t>(n)}), std::optional<std::int32_t>(first));
 }
 
 TEST(HardOverlap, SpheresInALargeBoxKeepTheGrid) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <stdexcept>
 #include <cmath>
 #include <string>
 
@@ -46,14 +47,58 @@ HardOverlap::HardOverlap(const State& state, const std::vector<std::size_t>& exp
 void HardOverlap::rebuild(const State& state) {
   state_ = &state;
   const Particles& p = state.particles;
-  rot_.resize(p.size());
-  for (std::size_t i = 0; i < p.size(); ++i) rot_[i] = p.orientation(i).toRotationMatrix();
-  std::vector<double> self(static_cast<std::size_t>(nspecies_));
-  for (int s = 0; s < nspecies_; ++s) self[static_cast<std::size_t>(s)] = cutoff(s, s);
-  cells_.configure(state.box, p.species, self, expected_counts_);
+  compute_rotations(p);
+  configure_grids(state);
   choose_searches();
   cells_.fill(p.x, p.y, p.z, grids_read());
   if (skin_.any()) rebuild_skin_lists();
+}
+
+void HardOverlap::refresh(const State& state, const std::vector<std::int64_t>& unseen_moves) {
+  if (refresh_needs_rebuild(state, unseen_moves)) {
+    rebuild(state);
+    return;
+  }
+  state_ = &state;
+  const Particles& p = state.particles;
+  compute_rotations(p);
+  configure_grids(state);
+  cells_.fill(p.x, p.y, p.z, grids_read());
+  for (int b = 0; b < nspecies_; ++b) {
+    if (!tree_needed(b)) continue;
+    gather_tree_entries(b);
+    trees_[static_cast<std::size_t>(b)].refit_all(tree_centres_, tree_halves_);
+    moves_since_build_[static_cast<std::size_t>(b)] += static_cast<std::size_t>(unseen_moves[static_cast<std::size_t>(b)]);
+  }
+}
+
+bool HardOverlap::refresh_needs_rebuild(const State& state, const std::vector<std::int64_t>& unseen_moves) const {
+  if (unseen_moves.size() != static_cast<std::size_t>(nspecies_))
+    throw std::invalid_argument("HardOverlap::refresh: expected one move count per species");
+  // Skin lists keep references that a refit would not renew; they serve DMC, which never refreshes.
+  if (skin_.any() || state.particles.size() != rot_.size()) return true;
+  const Vec3 change = state.box.edges().cwiseQuotient(edges_at_choice_) - Vec3::Ones();
+  if (change.cwiseAbs().maxCoeff() > 0.02) return true;
+  bool any_tree = false;
+  for (int b = 0; b < nspecies_; ++b) {
+    if (!tree_needed(b)) continue;
+    any_tree = true;
+    const auto ub = static_cast<std::size_t>(b);
+    if (moves_since_build_[ub] + static_cast<std::size_t>(std::max<std::int64_t>(0, unseen_moves[ub])) >= trees_[ub].size())
+      return true;
+  }
+  return !any_tree;
+}
+
+void HardOverlap::compute_rotations(const Particles& p) {
+  rot_.resize(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) rot_[i] = p.orientation(i).toRotationMatrix();
+}
+
+void HardOverlap::configure_grids(const State& state) {
+  std::vector<double> self(static_cast<std::size_t>(nspecies_));
+  for (int s = 0; s < nspecies_; ++s) self[static_cast<std::size_t>(s)] = cutoff(s, s);
+  cells_.configure(state.box, state.particles.species, self, expected_counts_);
 }
 
 std::vector<char> HardOverlap::grids_read() const {
@@ -73,6 +118,7 @@ void HardOverlap::choose_searches() {
   const auto ns = static_cast<std::size_t>(nspecies_);
   const std::vector<Vec3> h = mean_lab_half_extents(*state_, rot_);
   tree_pair_.assign(ns * ns, 0);
+  edges_at_choice_ = state_->box.edges();
   for (int a = 0; a < nspecies_; ++a)
     for (int b = 0; b < nspecies_; ++b) {
       const SpeciesGrid& grid = cells_.grid(b);
@@ -105,6 +151,12 @@ void HardOverlap::build_trees() {
 }
 
 void HardOverlap::rebuild_tree(int b) {
+  gather_tree_entries(b);
+  trees_[static_cast<std::size_t>(b)].build(state_->box, tree_members_, tree_centres_, tree_halves_);
+  moves_since_build_[static_cast<std::size_t>(b)] = 0;
+}
+
+void HardOverlap::gather_tree_entries(int b) {
   const Particles& p = state_->particles;
   // Scratch kept between rebuilds: domain sweeps rebuild every cycle.
   tree_members_.clear();
@@ -116,8 +168,6 @@ void HardOverlap::rebuild_tree(int b) {
     tree_centres_[ui] = p.position(ui);
     tree_halves_[ui] = bounding_half_extents(b, rot_[ui]);
   }
-  trees_[static_cast<std::size_t>(b)].build(state_->box, tree_members_, tree_centres_, tree_halves_);
-  moves_since_build_[static_cast<std::size_t>(b)] = 0;
 }
 
 void HardOverlap::inserted(std::int32_t i) {
@@ -349,10 +399,19 @@ std::optional<std::pair<std::int32_t, std::int32_t>> HardOverlap::first_overlap(
   return std::nullopt;
 }
 
-bool HardOverlap::any_overlap() const {
-  const Particles& p = state_->particles;
-  const auto n = static_cast<std::int64_t>(p.size());
-  std::atomic<bool> found{false};
+bool HardOverlap::any_overlap() const { return overlapping_particle().has_value(); }
+
+bool HardOverlap::overlaps_later(std::int32_t i) const {
+  const auto ui = static_cast<std::size_t>(i);
+  // Each pair once: only partners with a larger index, as first_overlap() scans.
+  return for_each_overlap(i, state_->particles.position(ui), rot_[ui], i + 1, [](std::int32_t) { return true; });
+}
+
+std::optional<std::int32_t> HardOverlap::overlapping_particle(const std::vector<std::int32_t>& suspects) const {
+  const auto n = static_cast<std::int64_t>(state_->particles.size());
+  for (const std::int32_t i : suspects)
+    if (i >= 0 && i < n && overlaps_later(i)) return i;
+  std::atomic<std::int32_t> found{-1};
   // Chunks small enough that a thread stops soon after another has found an overlap, large
   // enough that the flag is read rarely next to the queries. Small configurations stay on one
   // thread: their check takes well under a millisecond, and a fork and join per volume move
@@ -361,13 +420,12 @@ bool HardOverlap::any_overlap() const {
   constexpr std::int64_t kParallelFrom = 1000;
 #pragma omp parallel for schedule(dynamic, 64) if (n >= kParallelFrom)
   for (std::int64_t k = 0; k < n; ++k) {
-    if (found.load(std::memory_order_relaxed)) continue;
-    const auto ui = static_cast<std::size_t>(k);
+    if (found.load(std::memory_order_relaxed) >= 0) continue;
     const auto i = static_cast<std::int32_t>(k);
-    if (for_each_overlap(i, p.position(ui), rot_[ui], i + 1, [](std::int32_t) { return true; }))
-      found.store(true, std::memory_order_relaxed);
+    if (overlaps_later(i)) found.store(i, std::memory_order_relaxed);
   }
-  return found.load();
+  const std::int32_t i = found.load();
+  return i >= 0 ? std::optional<std::int32_t>(i) : std::nullopt;
 }
 
 }  // namespace anisodyn

@@ -28,6 +28,7 @@ McEngine::McEngine(State& state, const RngState& rng) : state_(state), rng_(rng)
     moves_.rotate[s] = 0.1;
   }
   counters_.reset(ns);
+  unseen_moves_.assign(ns, 0);
 }
 
 void McEngine::restore(const RngState& rng, const MoveCounters& counters, const MoveSizes& moves) {
@@ -50,12 +51,25 @@ void McEngine::set_domain_sweeps(bool on) {
 }
 
 void McEngine::refresh_overlap() {
-  if (overlap_stale_) rebuild_overlap();
+  if (overlap_stale_) update_overlap();
 }
 
-void McEngine::rebuild_overlap() {
-  overlap_.rebuild(state_);
+void McEngine::update_overlap() {
+  overlap_.refresh(state_, unseen_moves_);
+  std::fill(unseen_moves_.begin(), unseen_moves_.end(), 0);
   overlap_stale_ = false;
+}
+
+void McEngine::note_unseen_moves(const MoveCounters& made) {
+  for (std::size_t s = 0; s < unseen_moves_.size(); ++s) unseen_moves_[s] += made.translate_accepted[s] + made.rotate_accepted[s];
+}
+
+int McEngine::domain_cycles(int wanted) {
+  const MoveCounters before = counters_;
+  const int done = domains_->cycles(state_, rng_, wanted, moves_, field_, removing_overlaps_, counters_);
+  note_unseen_moves(counters_.since(before));
+  overlap_stale_ = true;
+  return done;
 }
 
 void McEngine::box_rescaled() {
@@ -64,17 +78,16 @@ void McEngine::box_rescaled() {
 
 void McEngine::positions_rescaled() {
   // Domain sweeps search copies of their slabs, so the whole configuration's structures are
-  // needed only by the next compression's overlap check (or a caller of overlap()): rebuild them
+  // needed only by the next compression's overlap check (or a caller of overlap()): refresh them
   // then. The sequential sweep's next trial needs them now.
   if (domains_) overlap_stale_ = true;
-  else rebuild_overlap();
+  else update_overlap();
 }
 
 void McEngine::cycle() {
   const std::size_t n = state_.particles.size();
   if (domains_) {
-    domains_->cycle(state_, rng_, moves_, field_, removing_overlaps_, counters_);
-    overlap_stale_ = true;
+    domain_cycles(1);
     if (beta_pressure_) volume_move();
     return;
   }
@@ -95,9 +108,7 @@ int McEngine::cycles(int wanted) {
     cycle();
     return 1;
   }
-  const int done = domains_->cycles(state_, rng_, wanted, moves_, field_, removing_overlaps_, counters_);
-  overlap_stale_ = true;
-  return done;
+  return domain_cycles(wanted);
 }
 
 void McEngine::particle_move() {
@@ -132,14 +143,23 @@ bool McEngine::any_overlap_after_rescale(const Vec3& new_edges) {
   saved_z_ = p.z;
   rescale_positions(new_edges.cwiseQuotient(old_edges));
   state_.box.set_edges(new_edges);
-  rebuild_overlap();
-  if (!overlap_.any_overlap()) return false;
+  update_overlap();
+  const std::optional<std::int32_t> witness = overlap_.overlapping_particle(suspects_);
+  if (!witness) return false;
+  suspect(*witness);
   p.x.swap(saved_x_);
   p.y.swap(saved_y_);
   p.z.swap(saved_z_);
   state_.box.set_edges(old_edges);
   positions_rescaled();
   return true;
+}
+
+void McEngine::suspect(std::int32_t i) {
+  const auto known = std::find(suspects_.begin(), suspects_.end(), i);
+  if (known != suspects_.end()) suspects_.erase(known);
+  else if (suspects_.size() == kSuspects) suspects_.pop_back();
+  suspects_.insert(suspects_.begin(), i);
 }
 
 void McEngine::volume_move() {

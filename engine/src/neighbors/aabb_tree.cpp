@@ -202,6 +202,22 @@ void AabbTree::insert(std::int32_t particle, const Vec3& r, const Vec3& half_ext
   ++size_;
 }
 
+void AabbTree::refit_all(const std::vector<Vec3>& centres, const std::vector<Vec3>& half_extents) {
+  for (std::size_t leaf = 0; leaf < count_.size(); ++leaf)
+    for (int s = 0; s < count_[leaf]; ++s) {
+      const std::size_t i = leaf * kLeafCapacity + static_cast<std::size_t>(s);
+      const auto p = static_cast<std::size_t>(id_[i]);
+      if (p >= centres.size() || p >= half_extents.size())
+        throw std::invalid_argument("AabbTree::refit_all: particle " + std::to_string(p) +
+                                    " outside the centre or half-extent arrays");
+      cx_[i] = centres[p].x(); cy_[i] = centres[p].y(); cz_[i] = centres[p].z();
+      hx_[i] = half_extents[p].x(); hy_[i] = half_extents[p].y(); hz_[i] = half_extents[p].z();
+    }
+  // Children always come after their parent in the array (builds and leaf splits append them),
+  // so one backward pass sees every child before its parent.
+  for (auto node = static_cast<std::int32_t>(nodes_.size()) - 1; node >= 0; --node) refit(node);
+}
+
 std::int32_t AabbTree::choose_leaf(const Vec3& r, const Vec3& h) const {
   // Descend into the child whose box grows least to take the new one; when both already hold it
   // (or grow alike), into the one whose centre is nearer.

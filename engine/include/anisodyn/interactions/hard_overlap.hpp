@@ -45,6 +45,12 @@ class HardOverlap {
 
   /// Re-reads every position and orientation (after a box change or a bulk edit).
   void rebuild(const State& state);
+  /// rebuild() for particles that have all moved a little (MC moves made elsewhere, a rescaled
+  /// box): the trees are refitted, not rebuilt, and the searches chosen at the last rebuild are
+  /// kept, until a tree has seen as many moves as it holds particles (unseen_moves per species:
+  /// accepted moves this object was not told of) or a box edge has changed by more than 2%;
+  /// then it rebuilds. The outcomes are the same bits either way.
+  void refresh(const State& state, const std::vector<std::int64_t>& unseen_moves);
   /// Registers particle i, just appended to the state (insertion during configuration building).
   void inserted(std::int32_t i);
   /// Whether particle i placed at r (wrapped) with rotation matrix rot overlaps any other particle.
@@ -58,6 +64,11 @@ class HardOverlap {
   /// Whether any two particles overlap: first_overlap() as a yes or no, checked on all OpenMP
   /// threads (the answer does not depend on their number). For the checks after a volume move.
   bool any_overlap() const;
+  /// A particle i whose query finds an overlap with some j > i, or none: any_overlap() with a
+  /// witness. The particles in `suspects` are queried first, one after the other, the rest on all
+  /// OpenMP threads; which witness comes back may depend on the threads, whether one does not.
+  /// After a rejected volume move, the next compression tends to fail on the same pairs.
+  std::optional<std::int32_t> overlapping_particle(const std::vector<std::int32_t>& suspects = {}) const;
 
   const Mat3& rotation(std::int32_t i) const { return rot_[static_cast<std::size_t>(i)]; }
   double cutoff(int a, int b) const { return cutoff_[static_cast<std::size_t>(a * nspecies_ + b)]; }
@@ -69,6 +80,8 @@ class HardOverlap {
  private:
   /// Calls on_overlap(j) for each particle j ≠ i, j ≥ first_j, that particle i placed at (r, rot)
   /// overlaps, until on_overlap returns true; returns whether it stopped early.
+  /// Whether particle i's query (partners j > i, at its current placement) finds an overlap.
+  bool overlaps_later(std::int32_t i) const;
   template <class F>
   bool for_each_overlap(std::int32_t i, const Vec3& r, const Mat3& rot, std::int32_t first_j, F&& on_overlap) const;
 
@@ -98,6 +111,13 @@ class HardOverlap {
   static constexpr double kTreeAdvantage = 50.0;
   void build_trees();
   void rebuild_tree(int b);
+  /// The centres and padded lab half-extents of species b, into the trees' scratch.
+  void gather_tree_entries(int b);
+  void configure_grids(const State& state);
+  void compute_rotations(const Particles& p);
+  /// Whether refresh() must rebuild: a tree due, a box changed by more than 2% since the searches
+  /// were chosen, or nothing but grids (whose rebuild is a refill).
+  bool refresh_needs_rebuild(const State& state, const std::vector<std::int64_t>& unseen_moves) const;
   /// Per species: whether some search reads its cell grid (after choose_searches).
   std::vector<char> grids_read() const;
   bool tree_needed(int b) const { return tree_needed_[static_cast<std::size_t>(b)] != 0; }
@@ -117,6 +137,7 @@ class HardOverlap {
   std::vector<char> tree_needed_;            // per species: some pair searches its tree
   std::vector<AabbTree> trees_;              // per species (empty unless needed)
   std::vector<std::size_t> moves_since_build_;  // per species with a tree
+  Vec3 edges_at_choice_ = Vec3::Zero();         // the box when the searches were chosen
   std::vector<std::int32_t> tree_members_;      // rebuild_tree's scratch
   std::vector<Vec3> tree_centres_, tree_halves_;
 };

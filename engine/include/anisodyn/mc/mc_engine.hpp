@@ -81,16 +81,27 @@ class McEngine {
   void volume_move();
   /// Brings the neighbour structures up to date after domain sweeps moved particles behind them.
   void refresh_overlap();
-  void rebuild_overlap();
+  /// Re-reads every position and orientation into the neighbour structures (refitted trees,
+  /// HardOverlap::refresh), telling them of the moves the domain sweeps made.
+  void update_overlap();
+  /// Domain sweeps made these moves behind the neighbour structures.
+  void note_unseen_moves(const MoveCounters& made);
+  /// The domain sweeps' cycles, counting their moves as unseen.
+  int domain_cycles(int wanted);
   /// A rescaled box was kept: the domain sweeps' slab copies are out of date.
   void box_rescaled();
-  /// After every position was rescaled (or restored): rebuilds the overlap search now or marks it
+  /// After every position was rescaled (or restored): refreshes the overlap search now or marks it
   /// stale (domain sweeps).
   void positions_rescaled();
   /// Rescales the box and positions to `new_edges`; if that creates an overlap, restores the
   /// previous box and the saved positions bit for bit and returns true.
   bool any_overlap_after_rescale(const Vec3& new_edges);
   void rescale_positions(const Vec3& factor);
+  /// Puts particle i first among the suspects the next compression check queries first.
+  void suspect(std::int32_t i);
+  /// Witnesses of recent failed compressions kept as suspects: a compression that fails usually
+  /// fails on a pair already close to contact, which the next ones tend to meet again.
+  static constexpr std::size_t kSuspects = 32;
   State& state_;
   Rng rng_;
   HardOverlap overlap_;
@@ -102,7 +113,9 @@ class McEngine {
   MoveCounters counters_;
   std::unique_ptr<DomainSweep> domains_;
   bool overlap_stale_ = false;
+  std::vector<std::int64_t> unseen_moves_;  // per species: accepted moves overlap_ was not told of
   std::vector<double> saved_x_, saved_y_, saved_z_;  // positions before a trial rescaling
+  std::vector<std::int32_t> suspects_;  // most recent first; which ones does not change the outcome
 };
 
 }  // namespace anisodyn

@@ -39,6 +39,11 @@ class AabbTree {
   void clear();
   /// Updates a particle already in the tree (call after an accepted move); r wrapped into [0, L).
   void move(std::int32_t particle, const Vec3& r, const Vec3& half_extent);
+  /// Re-reads the centre (wrapped into [0, L)) and half-extent of every particle in the tree,
+  /// indexed as in build(), and refits every box, keeping the tree's shape: O(N), against the
+  /// build's O(N log N), after all particles have moved a little (a domain sweep, a rescaled box).
+  /// The shape was chosen for the old positions, so the caller rebuilds once they have moved far.
+  void refit_all(const std::vector<Vec3>& centres, const std::vector<Vec3>& half_extents);
   /// Adds a particle not yet in the tree; r wrapped into [0, L).
   void insert(std::int32_t particle, const Vec3& r, const Vec3& half_extent);
 
