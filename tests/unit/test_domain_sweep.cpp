@@ -143,11 +143,7 @@ TEST(DomainSweep, ARestoredCutContinuesTheRunBitForBit) {
   Rng rng(12, 0);
   const State start = lattice_of(kRod, 300, 0.25, rng);
   const RngState seed{31, 0, 0, 4};
-  auto prepared = [](McEngine& mc) {
-    mc.set_domain_sweeps(true);
-    mc.move_sizes().translate[0] = 0.3;
-    mc.move_sizes().rotate[0] = 0.05;
-  };
+  auto prepared = [](McEngine& mc) { use_domains(mc, std::nullopt); };
   State whole = start;
   McEngine uninterrupted(whole, seed);
   prepared(uninterrupted);
