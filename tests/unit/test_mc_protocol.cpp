@@ -1,5 +1,6 @@
 // MC protocol phases: quick compression and the NPT ramp + squeeze both land exactly on the target
-// packing fraction with no overlaps; an interrupt during quick compression's overlap removal goes
+// packing fraction with no overlaps; the squeeze adapts its step to dense fluids and resumes bit
+// for bit; an interrupt during quick compression's overlap removal goes
 // back to the last configuration without overlaps, and the run resumed from there ends as an
 // uninterrupted one, bit for bit.
 #include <gtest/gtest.h>
@@ -74,6 +75,58 @@ TEST_F(McProtocolRun, NptCompressionLandsExactlyOnTheTarget) {
   run(s, proto);
   EXPECT_NEAR(s.packing_fraction(), 0.30, 1e-12);
   EXPECT_FALSE(HardOverlap(s).first_overlap().has_value());
+}
+
+TEST_F(McProtocolRun, TheSqueezeHalvesItsStepUntilStepsSucceedAndResumesBitForBit) {
+  // 500 hard spheres melted at η = 0.44, then squeezed by 1.1% in volume to 0.445. A 0.1% step
+  // succeeds with a chance of about exp[−(βPV − N) × 10⁻³] ≈ 2% here (βPV ≈ 8.8 N), so fixed steps
+  // would need about 2700 cycles; halved steps need a few hundred. A run resumed from a checkpoint
+  // taken in the middle of the squeeze (cursor and step included) ends as the uninterrupted one.
+  const State start = lattice(Species{"hs", Shape::sphere(1.0), 1.0, {}, {}}, 500, 0.44, false);
+  McProtocol proto;
+  McPhase melt;
+  melt.type = McPhase::Type::Nvt;
+  melt.cycles = 300;
+  melt.tune = true;
+  proto.phases = {melt, compress(0.445, "npt")};
+  proto.phases[1].squeeze_window = 0.05;  // squeeze only
+  proto.phases[1].max_cycles = 1200;
+  State reference = start;
+  run(reference, proto);
+  EXPECT_NEAR(reference.packing_fraction(), 0.445, 1e-12);
+  EXPECT_FALSE(HardOverlap(reference).first_overlap().has_value());
+
+  struct Checkpoint {
+    Particles particles;
+    Box box;
+    nlohmann::json runner;
+  };
+  std::vector<Checkpoint> mid_squeeze;
+  State s = start;
+  {
+    McRunner runner(s, proto, true);
+    io::H5mdWriter out(file("checkpointed.h5"), {"anisodyn", "", "test", nlohmann::json::object(), nlohmann::json::object(), s.species});
+    runner.run(out, 29, [&] {
+      const nlohmann::json js = runner.checkpoint_state();
+      const auto& cursor = js.at("cursor");
+      if (cursor.at("squeezing").get<bool>() && cursor.at("squeeze_step").get<double>() < 1e-3)
+        mid_squeeze.push_back({s.particles, s.box, js});
+    });
+  }
+  EXPECT_EQ(s.particles.x, reference.particles.x);
+  ASSERT_GE(mid_squeeze.size(), 2u);
+  const Checkpoint& c = mid_squeeze[mid_squeeze.size() / 2];
+  EXPECT_GT(c.box.volume(), reference.box.volume());
+  State resumed = start;
+  resumed.particles = c.particles;
+  resumed.box = c.box;
+  McRunner again(resumed, proto, true);
+  again.restore(c.runner);
+  io::H5mdWriter out(file("resumed.h5"), {"anisodyn", "", "test", nlohmann::json::object(), nlohmann::json::object(), resumed.species});
+  again.run(out, 0, [] {});
+  EXPECT_EQ(resumed.box.edges(), reference.box.edges());
+  EXPECT_EQ(resumed.particles.x, reference.particles.x);
+  EXPECT_EQ(resumed.particles.z, reference.particles.z);
 }
 
 TEST_F(McProtocolRun, AnInterruptDuringOverlapRemovalGoesBackAndResumesToTheSameResult) {

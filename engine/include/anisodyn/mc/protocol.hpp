@@ -1,7 +1,8 @@
 #pragma once
 // An MC preparation run is a list of phases executed in order (spec 10 §3):
 //   compress — NPT with βP raised stepwise until η ≥ target, then affine squeezes (≤ 0.1% in
-//              volume, interleaved with NVT sweeps) to exactly the target packing fraction;
+//              volume, halved after each failure and doubled after each success, interleaved
+//              with NVT sweeps) to exactly the target packing fraction;
 //   npt      — constant βP, isotropic or per-axis box moves;
 //   nvt      — constant volume.
 // Any phase may tune move sizes towards the target acceptance (preparation only). Observables are
@@ -80,6 +81,7 @@ struct McCursor {
   double compress_pressure = 0.0;   // current βP of a compress phase (0 = not started)
   bool squeezing = false;           // compress: pressure ramp done, squeezing to the exact target
   double quick_step = 0.0;          // quick compress: current relative volume step (0 = not started)
+  double squeeze_step = 0.0;        // compress: current relative volume step of the squeeze (0 = not started)
 };
 
 class McRunner : public run::StepClient {
