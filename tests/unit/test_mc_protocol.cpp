@@ -38,6 +38,12 @@ McPhase compress(double eta, const std::string& method) {
   return p;
 }
 
+struct Checkpoint {
+  Particles particles;
+  Box box;
+  nlohmann::json runner;
+};
+
 class McProtocolRun : public testing_support::ScratchDirTest {
  protected:
   McProtocolRun() : ScratchDirTest("mc-protocol") {}
@@ -46,6 +52,17 @@ class McProtocolRun : public testing_support::ScratchDirTest {
     McRunner runner(s, proto, true);
     io::H5mdWriter out(file("mc.h5"), {"anisodyn", "", "test", nlohmann::json::object(), nlohmann::json::object(), s.species});
     runner.run(out, 0, [] {});
+  }
+  /// The run of `proto` on `start` resumed from checkpoint `c` and run to its end.
+  State resumed_from(const State& start, const McProtocol& proto, const Checkpoint& c) {
+    State resumed = start;
+    resumed.particles = c.particles;
+    resumed.box = c.box;
+    McRunner again(resumed, proto, true);
+    again.restore(c.runner);
+    io::H5mdWriter out(file("resumed.h5"), {"anisodyn", "", "test", nlohmann::json::object(), nlohmann::json::object(), resumed.species});
+    again.run(out, 0, [] {});
+    return resumed;
   }
 };
 }  // namespace
@@ -96,11 +113,6 @@ TEST_F(McProtocolRun, TheSqueezeHalvesItsStepUntilStepsSucceedAndResumesBitForBi
   EXPECT_NEAR(reference.packing_fraction(), 0.445, 1e-12);
   EXPECT_FALSE(HardOverlap(reference).first_overlap().has_value());
 
-  struct Checkpoint {
-    Particles particles;
-    Box box;
-    nlohmann::json runner;
-  };
   std::vector<Checkpoint> mid_squeeze;
   State s = start;
   {
@@ -117,13 +129,7 @@ TEST_F(McProtocolRun, TheSqueezeHalvesItsStepUntilStepsSucceedAndResumesBitForBi
   ASSERT_GE(mid_squeeze.size(), 2u);
   const Checkpoint& c = mid_squeeze[mid_squeeze.size() / 2];
   EXPECT_GT(c.box.volume(), reference.box.volume());
-  State resumed = start;
-  resumed.particles = c.particles;
-  resumed.box = c.box;
-  McRunner again(resumed, proto, true);
-  again.restore(c.runner);
-  io::H5mdWriter out(file("resumed.h5"), {"anisodyn", "", "test", nlohmann::json::object(), nlohmann::json::object(), resumed.species});
-  again.run(out, 0, [] {});
+  const State resumed = resumed_from(start, proto, c);
   EXPECT_EQ(resumed.box.edges(), reference.box.edges());
   EXPECT_EQ(resumed.particles.x, reference.particles.x);
   EXPECT_EQ(resumed.particles.z, reference.particles.z);
@@ -145,11 +151,6 @@ TEST_F(McProtocolRun, AnInterruptDuringOverlapRemovalGoesBackAndResumesToTheSame
   State reference = start;
   run(reference, proto);
 
-  struct Checkpoint {
-    Particles particles;
-    Box box;
-    nlohmann::json runner;
-  };
   std::vector<Checkpoint> written;
   State s = start;
   install_interrupt_handlers();
@@ -172,13 +173,7 @@ TEST_F(McProtocolRun, AnInterruptDuringOverlapRemovalGoesBackAndResumesToTheSame
   EXPECT_EQ(written[3].runner, written[2].runner);
   EXPECT_GT(written[3].box.volume(), reference.box.volume());
 
-  State resumed = start;
-  resumed.particles = written[3].particles;
-  resumed.box = written[3].box;
-  McRunner again(resumed, proto, true);
-  again.restore(written[3].runner);
-  io::H5mdWriter out(file("resumed.h5"), {"anisodyn", "", "test", nlohmann::json::object(), nlohmann::json::object(), resumed.species});
-  again.run(out, 0, [] {});
+  const State resumed = resumed_from(start, proto, written[3]);
   EXPECT_EQ(resumed.box.edges(), reference.box.edges());
   EXPECT_EQ(resumed.particles.x, reference.particles.x);
   EXPECT_EQ(resumed.particles.y, reference.particles.y);
