@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <atomic>
-#include <stdexcept>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 #include "anisodyn/core/error.hpp"

@@ -78,10 +78,10 @@ class HardOverlap {
   bool uses_tree(int a, int b) const { return tree_pair_[static_cast<std::size_t>(a * nspecies_ + b)] != 0; }
 
  private:
-  /// Calls on_overlap(j) for each particle j ≠ i, j ≥ first_j, that particle i placed at (r, rot)
-  /// overlaps, until on_overlap returns true; returns whether it stopped early.
   /// Whether particle i's query (partners j > i, at its current placement) finds an overlap.
   bool overlaps_later(std::int32_t i) const;
+  /// Calls on_overlap(j) for each particle j ≠ i, j ≥ first_j, that particle i placed at (r, rot)
+  /// overlaps, until on_overlap returns true; returns whether it stopped early.
   template <class F>
   bool for_each_overlap(std::int32_t i, const Vec3& r, const Mat3& rot, std::int32_t first_j, F&& on_overlap) const;
 
