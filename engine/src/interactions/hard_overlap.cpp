@@ -84,7 +84,7 @@ bool HardOverlap::refresh_needs_rebuild(const State& state, const std::vector<st
     if (!tree_needed(b)) continue;
     any_tree = true;
     const auto ub = static_cast<std::size_t>(b);
-    if (moves_since_build_[ub] + static_cast<std::size_t>(std::max<std::int64_t>(0, unseen_moves[ub])) >= trees_[ub].size())
+    if (moves_since_build_[ub] + static_cast<std::size_t>(unseen_moves[ub]) >= trees_[ub].size())
       return true;
   }
   return !any_tree;
