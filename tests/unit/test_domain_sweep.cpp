@@ -4,6 +4,7 @@
 //     threads give the same bits, with slabs and with a grid;
 //   - the automatic layout cuts large systems only where domains stay wide next to the particles;
 //   - a cut restored from a checkpoint in the middle of its cycles continues the run bit for bit;
+//     under NPT its volume moves wait for its end, and a checkpoint carries the moves owed;
 //   - an ideal gas of rods keeps isotropic orientations, although movability depends on them;
 //   - interacting boards in slabs about one board long keep the orientational correlations of the
 //     sequential sweep (a movability test that broke detailed balance fails this);
@@ -175,14 +176,19 @@ TEST(DomainSweep, ARestoredCutContinuesTheRunBitForBit) {
 
 TEST(DomainSweep, CyclesRunAtOnceGiveTheBitsOfSingleCycles) {
   // Each domain runs its share of several cycles back to back; the domains are independent within
-  // a cut, so the result must be that of the cycles run one by one, cut boundaries included.
+  // a cut, so the result must be that of the cycles run one by one, cut boundaries included. Under
+  // NPT too: the cut's volume moves are made at its end either way.
   Rng rng(13, 0);
   const State start = lattice_of(kRod, 400, 0.25, rng);
-  for (const auto& layout : {std::optional<DomainSweep::Layout>{}, std::optional<DomainSweep::Layout>{DomainSweep::Layout{2, 2, 1}}}) {
+  const std::optional<DomainSweep::Layout> slabs, grid = DomainSweep::Layout{2, 2, 1};
+  for (const auto& [layout, pressure] : {std::pair{slabs, std::optional<double>{}}, std::pair{grid, std::optional<double>{}},
+                                          std::pair{slabs, std::optional<double>{0.05}}}) {
     auto run = [&](int batch) {
       State s = start;
       McEngine mc(s, RngState{41, 0, 0, 4});
       use_domains(mc, layout);
+      mc.set_pressure(pressure);
+      mc.move_sizes().log_volume = 0.01;
       std::vector<int> runs;
       for (int done = 0; done < 21;) {
         const int k = mc.cycles(std::min(batch, 21 - done));
@@ -192,10 +198,10 @@ TEST(DomainSweep, CyclesRunAtOnceGiveTheBitsOfSingleCycles) {
         done += k;
       }
       EXPECT_FALSE(mc.overlap().first_overlap().has_value());
-      return std::make_tuple(s.particles, mc.counters(), mc.rng_state(), runs);
+      return std::make_tuple(s.particles, mc.counters(), mc.rng_state(), runs, s.box.edges());
     };
-    const auto [one, one_counters, one_rng, one_runs] = run(1);
-    const auto [five, five_counters, five_rng, five_runs] = run(5);
+    const auto [one, one_counters, one_rng, one_runs, one_edges] = run(1);
+    const auto [five, five_counters, five_rng, five_runs, five_edges] = run(5);
     // Batches of 5 stop at each cut's end (8 cycles): 5, 3, 5, 3, 5.
     EXPECT_EQ(five_runs, (std::vector<int>{5, 3, 5, 3, 5}));
     EXPECT_EQ(one.x, five.x);
@@ -207,8 +213,60 @@ TEST(DomainSweep, CyclesRunAtOnceGiveTheBitsOfSingleCycles) {
     EXPECT_EQ(one_counters.translate_accepted, five_counters.translate_accepted);
     EXPECT_EQ(one_counters.rotate_tried, five_counters.rotate_tried);
     EXPECT_EQ(one_rng.counter, five_rng.counter);
+    EXPECT_EQ(one_edges, five_edges);
+    EXPECT_EQ(one_counters.volume_tried, pressure ? 16 : 0);  // the cuts that ended: two of 8 cycles
+    EXPECT_EQ(one_counters.volume_accepted, five_counters.volume_accepted);
+    EXPECT_EQ(one_edges == start.box.edges(), !pressure);
     EXPECT_NE(one.x, start.particles.x);
   }
+}
+
+TEST(DomainSweep, NptVolumeMovesWaitForTheCutsEndAndAResumedRunStillOwesThem) {
+  // Under NPT each domain cycle owes one volume move, made when its cut ends, so that the cut's
+  // cycles run as one batch on unchanged copies. A checkpoint in the middle of a cut must carry
+  // the moves owed.
+  const ScopedThreadCount one_thread(1);
+  Rng rng(14, 0);
+  const State start = lattice_of(kRod, 300, 0.25, rng);
+  const RngState seed{32, 0, 0, 4};
+  auto prepared = [](McEngine& mc) {
+    use_domains(mc, std::nullopt);
+    mc.set_pressure(0.005);  // βPV ≈ 0.4 N: the box expands, and expansions never overlap
+    mc.move_sizes().log_volume = 0.01;
+  };
+  State whole = start;
+  McEngine uninterrupted(whole, seed);
+  prepared(uninterrupted);
+  for (int c = 0; c < 5; ++c) uninterrupted.cycle();
+  EXPECT_EQ(uninterrupted.counters().volume_tried, 0);
+  EXPECT_EQ(uninterrupted.volume_moves_owed(), 5);
+  EXPECT_EQ(whole.box.edges(), start.box.edges());
+  const State mid_cut = whole;
+  const RngState rng_mid = uninterrupted.rng_state();
+  const MoveCounters counters_mid = uninterrupted.counters();
+  const std::optional<DomainSweep::Cut> cut = uninterrupted.domain_sweep()->cut();
+  ASSERT_TRUE(cut.has_value());
+  for (int c = 5; c < 8; ++c) uninterrupted.cycle();
+  EXPECT_EQ(uninterrupted.counters().volume_tried, 8);
+  EXPECT_EQ(uninterrupted.volume_moves_owed(), 0);
+  EXPECT_GT(uninterrupted.counters().volume_accepted, 0);
+  for (int c = 8; c < 13; ++c) uninterrupted.cycle();
+
+  auto resume = [&](int owed) {
+    State s = mid_cut;
+    McEngine after(s, seed);
+    prepared(after);
+    after.restore(rng_mid, counters_mid, uninterrupted.move_sizes(), owed);
+    after.domain_sweep()->restore_cut(cut);
+    for (int k = 0; k < 8; ++k) after.cycle();
+    return s;
+  };
+  const State resumed = resume(5);
+  EXPECT_EQ(resumed.box.edges(), whole.box.edges());
+  EXPECT_EQ(resumed.particles.x, whole.particles.x);
+  EXPECT_EQ(resumed.particles.qw, whole.particles.qw);
+  // Forgetting what was owed leaves the uninterrupted trajectory.
+  EXPECT_NE(resume(0).box.edges(), whole.box.edges());
 }
 
 TEST(DomainSweep, TwoHardSpheresSampleTheExactSeparationLaw) {

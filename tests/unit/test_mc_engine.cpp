@@ -72,7 +72,7 @@ State single_cuboid() {
 TEST(McEngine, IdealGasNptMeanVolumeIsExact) {
   // ln V moves with acceptance exp(-βPΔV + (N+1) ln V'/V) sample p(V) ∝ V^N exp(-βPV): <V> = (N+1)/βP.
   // Sequential sweeps (a volume move with probability 1/(N + 1) per move) and domain sweeps (one
-  // per cycle, after the slabs' particle moves) alike.
+  // per cycle, made together at the end of each cut) alike.
   const std::size_t n = 20;
   const double beta_p = 0.5;
   const ScopedThreadCount one_thread(1);  // domain sweeps give the same bits on any thread count

@@ -183,10 +183,12 @@ TEST_F(McProtocolRun, AnInterruptDuringOverlapRemovalGoesBackAndResumesToTheSame
 }
 
 TEST_F(McProtocolRun, DomainSweepPhasesRunInBatchesWithTheBitsOfSingleCycles) {
-  // NVT phases under domain sweeps run several cycles as one batch, stopping wherever anything
-  // reads the state: observations (every 3 cycles), frames (every 7), tuning (every 20),
-  // checkpoints. A checkpoint due every cycle forbids batches, so that run is the cycle-by-cycle
-  // reference; another with checkpoints every 4 cycles batches between them.
+  // Phases under domain sweeps run several cycles as one batch, stopping wherever anything reads
+  // the state: observations (every 3 cycles), frames (every 7), tuning (every 20), checkpoints. A
+  // checkpoint due every cycle forbids batches, so that run is the cycle-by-cycle reference;
+  // another with checkpoints every 4 cycles batches between them. The NPT phase makes each cut's
+  // volume moves at its end; a run resumed from a checkpoint in the middle of a cut, with moves
+  // owed, ends as the others.
   State start = lattice(Species{"rod", Shape::cuboid(1.0, 1.0, 12.0), 1.0, {}, {}}, 300, 0.25, false);
   McProtocol proto;
   proto.domain_sweeps = true;
@@ -202,26 +204,43 @@ TEST_F(McProtocolRun, DomainSweepPhasesRunInBatchesWithTheBitsOfSingleCycles) {
   sampled.label = "sampled";
   sampled.cycles = 31;
   sampled.tune = false;
-  proto.phases = {tuned, sampled};
+  McPhase npt = sampled;
+  npt.type = McPhase::Type::Npt;
+  npt.label = "npt";
+  npt.cycles = 29;
+  npt.pressure = 0.05;
+  proto.phases = {tuned, sampled, npt};
+  std::optional<Checkpoint> owing;  // the first checkpoint of the NPT phase that owes volume moves
   auto run_with_checkpoints = [&](std::int64_t every, const std::string& name) {
     State s = start;
     McRunner runner(s, proto, true);
     io::H5mdWriter out(file(name), {"anisodyn", "", "test", nlohmann::json::object(), nlohmann::json::object(), s.species});
     int written = 0;
-    runner.run(out, every, [&] { ++written; });
-    return std::make_tuple(s.particles, runner.summary(), runner.checkpoint_state(), written);
+    runner.run(out, every, [&] {
+      ++written;
+      const nlohmann::json js = runner.checkpoint_state();
+      if (!owing && js.at("cursor").at("phase") == 2 && js.at("volume_moves_owed").get<int>() > 0) owing = Checkpoint{s.particles, s.box, js};
+    });
+    return std::make_tuple(s.particles, runner.summary(), runner.checkpoint_state(), written, s.box);
   };
-  const auto [single, single_summary, single_engine, single_checkpoints] = run_with_checkpoints(1, "single.h5");
+  const auto [single, single_summary, single_engine, single_checkpoints, single_box] = run_with_checkpoints(1, "single.h5");
   for (const std::int64_t every : {std::int64_t{0}, std::int64_t{4}}) {
-    const auto [batched, summary, engine, checkpoints] = run_with_checkpoints(every, "batched.h5");
+    const auto [batched, summary, engine, checkpoints, box] = run_with_checkpoints(every, "batched.h5");
     EXPECT_EQ(batched.x, single.x) << "checkpoints every " << every;
     EXPECT_EQ(batched.y, single.y);
     EXPECT_EQ(batched.qw, single.qw);
     EXPECT_EQ(batched.qz, single.qz);
+    EXPECT_EQ(box.edges(), single_box.edges());
     EXPECT_EQ(summary, single_summary);
     EXPECT_EQ(engine, single_engine);
-    EXPECT_EQ(checkpoints, every == 0 ? 0 : 78 / 4);
+    EXPECT_EQ(checkpoints, every == 0 ? 0 : 107 / 4);
   }
-  EXPECT_EQ(single_checkpoints, 78);
+  EXPECT_EQ(single_checkpoints, 107);
   EXPECT_NE(single.x, start.particles.x);
+  EXPECT_NE(single_box.edges(), start.box.edges());
+  ASSERT_TRUE(owing.has_value());
+  const State resumed = resumed_from(start, proto, *owing);
+  EXPECT_EQ(resumed.box.edges(), single_box.edges());
+  EXPECT_EQ(resumed.particles.x, single.x);
+  EXPECT_EQ(resumed.particles.qw, single.qw);
 }

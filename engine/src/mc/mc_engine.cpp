@@ -31,10 +31,11 @@ McEngine::McEngine(State& state, const RngState& rng) : state_(state), rng_(rng)
   unseen_moves_.assign(ns, 0);
 }
 
-void McEngine::restore(const RngState& rng, const MoveCounters& counters, const MoveSizes& moves) {
+void McEngine::restore(const RngState& rng, const MoveCounters& counters, const MoveSizes& moves, int volume_moves_owed) {
   rng_ = Rng(rng);
   counters_ = counters;
   moves_ = moves;
+  volume_moves_owed_ = volume_moves_owed;
 }
 
 void McEngine::set_pressure(std::optional<double> beta_pressure, BoxMoves moves) {
@@ -45,6 +46,7 @@ void McEngine::set_pressure(std::optional<double> beta_pressure, BoxMoves moves)
 void McEngine::set_domain_sweeps(bool on) {
   if (on && !domains_) domains_ = std::make_unique<DomainSweep>();
   if (!on) {
+    settle_volume_moves();
     refresh_overlap();
     domains_.reset();
   }
@@ -69,7 +71,20 @@ int McEngine::domain_cycles(int wanted) {
   const int done = domains_->cycles(state_, rng_, wanted, moves_, field_, removing_overlaps_, counters_);
   note_unseen_moves(counters_.since(before));
   overlap_stale_ = true;
+  // Volume moves wait for the cut's end: a box change would make every domain copy again, and
+  // would end the batch of the cut's cycles. Each cycle keeps the distribution at fixed volume,
+  // each volume move keeps it too, and when the moves are made does not depend on the
+  // configuration, so their sequence keeps it as well.
+  if (beta_pressure_) volume_moves_owed_ += done;
+  if (!domains_->cut()) settle_volume_moves();
   return done;
+}
+
+void McEngine::settle_volume_moves() {
+  // Made under the pressure in force at the cut's end; they lapse if a constant-volume phase has
+  // begun within the cut.
+  if (!beta_pressure_) volume_moves_owed_ = 0;
+  for (; volume_moves_owed_ > 0; --volume_moves_owed_) volume_move();
 }
 
 void McEngine::box_rescaled() {
@@ -88,7 +103,6 @@ void McEngine::cycle() {
   const std::size_t n = state_.particles.size();
   if (domains_) {
     domain_cycles(1);
-    if (beta_pressure_) volume_move();
     return;
   }
   refresh_overlap();

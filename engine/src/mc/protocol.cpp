@@ -405,6 +405,7 @@ nlohmann::json McRunner::checkpoint_state() const {
           {"rng", {{"seed", r.seed}, {"stream", r.stream}, {"counter", r.counter}, {"used", r.used}}},
           {"counters", counters_to_json(engine_.counters())},
           {"domain_sweeps", engine_.domain_sweep() ? domains_to_json(*engine_.domain_sweep()) : nlohmann::json(nullptr)},
+          {"volume_moves_owed", engine_.volume_moves_owed()},
           {"tune_mark", counters_to_json(tune_mark_)},
           {"sample_mark", counters_to_json(sample_mark_)},
           {"move_sizes", {{"translate", m.translate}, {"rotate", m.rotate}, {"log_volume", m.log_volume}}},
@@ -428,7 +429,8 @@ void McRunner::restore(const nlohmann::json& js) {
   js.at("move_sizes").at("translate").get_to(m.translate);
   js.at("move_sizes").at("rotate").get_to(m.rotate);
   m.log_volume = js.at("move_sizes").at("log_volume").get<double>();
-  engine_.restore(rng, counters_from_json(js.at("counters")), m);
+  // Checkpoints from before domain sweeps deferred their volume moves to the cut's end owe none.
+  engine_.restore(rng, counters_from_json(js.at("counters")), m, js.value("volume_moves_owed", 0));
   // Checkpoints written before domain sweeps kept a cut for several cycles have none: the next
   // cycle starts a new cut.
   if (DomainSweep* d = engine_.domain_sweep(); d && js.contains("domain_sweeps") && !js.at("domain_sweeps").is_null())

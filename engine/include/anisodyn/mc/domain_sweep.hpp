@@ -11,8 +11,9 @@
 // the configuration; within a domain, picking one of its n movable particles and a move that keeps
 // it inside is symmetric (a move and its reverse see the same n), so every trial obeys detailed
 // balance; and the number of trials per slab (N shared equally between the slabs that have
-// movable bodies: balanced threads) is unchanged by the trials. A volume move between two cycles
-// of one cut acts on the whole configuration, whatever the cut; the slabs are then copied anew.
+// movable bodies: balanced threads) is unchanged by the trials. Under NPT the engine makes the
+// cut's volume moves (one per cycle) on the whole configuration when the cut ends (McEngine); a
+// box changed within a cut (quick compression, the squeeze) makes the slabs copy anew.
 // Random cuts let every particle move. Not for DMC, whose dynamics needs the sequential choice.
 //
 // Why a cut serves several cycles: copying the slabs and building their trees costs about as much

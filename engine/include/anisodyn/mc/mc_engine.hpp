@@ -30,15 +30,20 @@ class McEngine {
 
   /// One cycle: N particle trial moves, plus on average one volume move under NPT. With domain
   /// sweeps, the particle moves are one DomainSweep cycle (two slabs, or a grid of domains for
-  /// large systems, on all threads) followed, under NPT, by one volume move. The engine does not
-  /// see changes made to the state behind its back.
+  /// large systems, on all threads); under NPT each such cycle owes one volume move, and the owed
+  /// moves are made one after another when the cut ends (under the pressure in force then; none
+  /// if it is a constant-volume phase by then), so that a cut's cycles run on the same copies, in
+  /// one batch, as under NVT. The engine does not see changes made to the state behind its back.
   void cycle();
-  /// Up to `wanted` cycles at once, with the bits of as many calls of cycle(): NVT domain sweeps
-  /// run each domain's cycles back to back, within one cut (DomainSweep::cycles); otherwise one
+  /// Up to `wanted` cycles at once, with the bits of as many calls of cycle(): domain sweeps run
+  /// each domain's cycles back to back, within one cut (DomainSweep::cycles); otherwise one
   /// cycle. Returns the number of cycles run (≥ 1).
   int cycles(int wanted);
-  /// Whether cycles() can run more than one cycle at once now (NVT domain sweeps).
-  bool batches_cycles() const { return domains_ && !beta_pressure_; }
+  /// Whether cycles() can run more than one cycle at once (domain sweeps).
+  bool batches_cycles() const { return domains_ != nullptr; }
+  /// Volume moves owed by the domain cycles of the cut in use (NPT with domain sweeps), for a
+  /// checkpoint; restore() takes them back.
+  int volume_moves_owed() const { return volume_moves_owed_; }
   /// Domain sweeps on or off (off: the sequential random choice, the default). Preparation only:
   /// the trajectory differs from the sequential one, the distribution sampled does not.
   void set_domain_sweeps(bool on);
@@ -61,7 +66,7 @@ class McEngine {
   const MoveSizes& move_sizes() const { return moves_; }
   /// Restores what a checkpoint saved, so the run continues bit-for-bit (domain sweeps restore
   /// their layout and cut through domain_sweep()).
-  void restore(const RngState& rng, const MoveCounters& counters, const MoveSizes& moves);
+  void restore(const RngState& rng, const MoveCounters& counters, const MoveSizes& moves, int volume_moves_owed = 0);
   /// The domain sweeps (null without), for their checkpoint and their layout.
   DomainSweep* domain_sweep() { return domains_.get(); }
   const DomainSweep* domain_sweep() const { return domains_.get(); }
@@ -86,8 +91,11 @@ class McEngine {
   void update_overlap();
   /// Domain sweeps made these moves behind the neighbour structures.
   void note_unseen_moves(const MoveCounters& made);
-  /// The domain sweeps' cycles, counting their moves as unseen.
+  /// The domain sweeps' cycles, counting their moves as unseen; under NPT each owes a volume
+  /// move, and the owed moves are made when the cut ends.
   int domain_cycles(int wanted);
+  /// Makes the owed volume moves now.
+  void settle_volume_moves();
   /// A rescaled box was kept: the domain sweeps' slab copies are out of date.
   void box_rescaled();
   /// After every position was rescaled (or restored): refreshes the overlap search now or marks it
@@ -113,6 +121,7 @@ class McEngine {
   MoveCounters counters_;
   std::unique_ptr<DomainSweep> domains_;
   bool overlap_stale_ = false;
+  int volume_moves_owed_ = 0;
   std::vector<std::int64_t> unseen_moves_;  // per species: accepted moves overlap_ was not told of
   std::vector<double> saved_x_, saved_y_, saved_z_;  // positions before a trial rescaling
   std::vector<std::int32_t> suspects_;  // most recent first; which ones does not change the outcome
