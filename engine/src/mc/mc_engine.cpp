@@ -118,7 +118,7 @@ void McEngine::cycle() {
 }
 
 int McEngine::cycles(int wanted) {
-  if (!batches_cycles()) {
+  if (!domains_) {
     cycle();
     return 1;
   }

@@ -120,7 +120,7 @@ void McRunner::one_cycle(io::H5mdWriter& out) {
 }
 
 void McRunner::cycles_at_once(io::H5mdWriter& out, std::int64_t most) {
-  if (!engine_.batches_cycles()) {
+  if (!engine_.domain_sweeps()) {  // only domain sweeps run cycles in batches
     one_cycle(out);
     return;
   }

@@ -39,14 +39,13 @@ class McEngine {
   /// each domain's cycles back to back, within one cut (DomainSweep::cycles); otherwise one
   /// cycle. Returns the number of cycles run (≥ 1).
   int cycles(int wanted);
-  /// Whether cycles() can run more than one cycle at once (domain sweeps).
-  bool batches_cycles() const { return domains_ != nullptr; }
   /// Volume moves owed by the domain cycles of the cut in use (NPT with domain sweeps), for a
   /// checkpoint; restore() takes them back.
   int volume_moves_owed() const { return volume_moves_owed_; }
   /// Domain sweeps on or off (off: the sequential random choice, the default). Preparation only:
   /// the trajectory differs from the sequential one, the distribution sampled does not.
   void set_domain_sweeps(bool on);
+  /// Whether domain sweeps are on: then, and only then, cycles() runs more than one cycle at once.
   bool domain_sweeps() const { return domains_ != nullptr; }
   /// Scales every move size by acceptance/target (bounded by a factor 2 either way), using the
   /// acceptance counted in `window`.
