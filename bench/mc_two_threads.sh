@@ -28,6 +28,9 @@ rate() {
 round_trip() {
   "$bin/bench_core_latency" 2>/dev/null | awk '/BM_CoreRoundTrip/ {printf "%.0f", $2}'
 }
+for tool in bench_mc_throughput bench_core_latency; do
+  [ -x "$bin/$tool" ] || { echo "mc_two_threads.sh: $bin/$tool not found (build the benchmarks first: scripts/build)" >&2; exit 2; }
+done
 echo "machine: $(nproc) cores; $(uptime)"
 results=$(mktemp)
 trap 'rm -f "$results"' EXIT
@@ -37,6 +40,10 @@ for round in $(seq "$rounds"); do
     trip=$(round_trip)
     a=$(rate "$one")
     b=$(rate "$two")
+    if [ -z "$a" ] || [ -z "$b" ]; then
+      echo "mc_two_threads.sh: no rate from $one or $two" >&2
+      exit 1
+    fi
     ratio=$(awk -v a="$a" -v b="$b" 'BEGIN { printf "%.3f", b / a }')
     printf '%s round %d %s  1 thread %s  2 threads %s  ratio %s  [core round trip %s ns]\n' "$(date -u +%T)" "$round" "$name" "$a" "$b" "$ratio" "$trip"
     echo "$name $ratio" >>"$results"
